@@ -1,0 +1,60 @@
+#pragma once
+// What a user asks of a deformation: prism parameters, handles and forces, with faces already
+// resolved to indices. Both the scenario loader and the editor produce these.
+
+#include <string>
+#include <vector>
+
+#include "primo/types.h"
+
+namespace primo {
+
+// x' = rotation * x + translation.
+struct RigidTransform {
+  Mat3 rotation = Mat3::Identity();
+  Vec3 translation = Vec3::Zero();
+
+  Vec3 apply(const Vec3& x) const { return rotation * x + translation; }
+  static RigidTransform identity() { return {}; }
+};
+
+// A rotation of `angle_deg` degrees (right-handed) about `axis` through `center`, followed by
+// `translate`: x' = R (x - center) + center + translate. `axis` need not be unit length but
+// must be non-zero when the angle is non-zero.
+RigidTransform make_rigid_transform(const Vec3& translate, const Vec3& axis, double angle_deg,
+                                    const Vec3& center);
+
+struct PrismParameters {
+  double height = 1.0;        // half-thickness as a multiple of the mean edge length
+  double normal_blend = 0.0;  // beta: 0 thin shell, 1 thin plate, < 0 enhances detail
+  double width = 1.0;         // scale of every prism about its face centroid
+  // Per-face multipliers from regions (empty means all 1). Height factors act per vertex as
+  // the minimum over the vertex's incident faces.
+  std::vector<double> face_height_factor;
+  std::vector<double> face_width_factor;
+};
+
+enum class Fix {
+  All,          // position and orientation prescribed
+  Position,     // area-weighted centroid prescribed, orientation optimized
+  Orientation,  // rotation prescribed, translation optimized
+};
+
+// One rigid group of faces. `transform` moves the group from its rest pose to its target.
+struct Handle {
+  std::string name;
+  std::vector<int> faces;
+  Fix fix = Fix::All;
+  RigidTransform transform;
+};
+
+// Zero-rest-length springs pulling each face's moved rest centroid towards centroid + offset.
+// Energy: stiffness * sum_f |F_f| |x_f - target_f|^2 / sum_f |F_f|.
+struct Force {
+  std::string name;
+  std::vector<int> faces;
+  Vec3 target_offset = Vec3::Zero();
+  double stiffness = 0.0;
+};
+
+}  // namespace primo

@@ -1,0 +1,95 @@
+#pragma once
+// The deformation engine as the editor and `primo deform` use it: set up once for a mesh,
+// its prism parameters, handles and forces; then move handle targets and iterate, each solve
+// warm-started from the current state; read vertex positions and energy. Nothing is printed.
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "primo/constraints.h"
+#include "primo/global_solver.h"
+#include "primo/mesh.h"
+#include "primo/prism_layer.h"
+#include "primo/rigid_system.h"
+
+namespace primo {
+
+enum class SolveMethod { Global, Local };
+
+struct SolveOptions {
+  SolveMethod method = SolveMethod::Global;
+  int max_iterations = 100;
+  double tolerance = 1e-8;  // stop when an iteration lowers E by less than tolerance * E
+  // Global only: switch to exact-Hessian Newton steps once Gauss-Newton takes full steps
+  // that lower the energy by less than this fraction (0 disables exact steps).
+  double exact_hessian_below = 1e-2;
+};
+
+struct SolveReport {
+  int iterations = 0;
+  bool converged = false;
+  double initial_energy = 0.0;
+  double energy = 0.0;
+  double seconds = 0.0;
+  int exact_newton_steps = 0;
+  std::vector<double> energies;  // after each iteration
+  std::string stop_reason;
+};
+
+class Deformer {
+ public:
+  // Builds the prisms and bodies: one body per handle, one per remaining face. Handles must
+  // not share faces. Throws Error for invalid input (face indices, overlapping handles,
+  // degenerate extrusion directions). The state starts with every free prism at rest and
+  // every handle at its full transform.
+  Deformer(const Mesh& mesh, const PrismParameters& params, std::vector<Handle> handles,
+           std::vector<Force> forces = {});
+  ~Deformer();
+  Deformer(Deformer&&) noexcept;
+  Deformer& operator=(Deformer&&) noexcept;
+
+  const PrismLayer& prisms() const { return layer_; }
+  const RigidSystem& system() const { return system_; }
+  const std::vector<Handle>& handles() const { return handles_; }
+  const std::vector<Force>& forces() const { return forces_; }
+
+  // Moves a handle's target. Fixed handles jump there; position handles move their pinned
+  // centroid and keep their current rotation; orientation handles take the new rotation and
+  // keep their current translation. Free prisms are untouched (warm start).
+  void set_handle_transform(int handle, const RigidTransform& transform);
+  void set_force_offset(int force, const Vec3& target_offset);
+
+  // Runs iterations from the current state until the stopping rule of the scenario format.
+  SolveReport solve(const SolveOptions& options);
+
+  double energy() const { return system_.energy(state_); }
+  // Deformed vertex positions: the average over incident prisms of each prism's motion
+  // applied to its own width-scaled copy of the vertex. Vertices without faces stay put.
+  std::vector<Vec3> vertex_positions() const;
+  // A copy of `mesh` with the deformed positions.
+  Mesh deformed_mesh(const Mesh& mesh) const;
+
+  // Per-face rigid motions in rest coordinates (x -> R x + t), and setting them for the
+  // faces of free bodies (constrained bodies keep their prescribed parts).
+  std::vector<RigidTransform> face_motions() const;
+  void set_face_motions(const std::vector<RigidTransform>& motions);
+  const std::vector<BodyState>& body_states() const { return state_; }
+
+  // Every free prism back to rest, every handle to its current full transform.
+  void reset();
+
+ private:
+  BodyState handle_state(int handle) const;
+  void rebuild_springs();
+
+  std::vector<Vec3> rest_points_;
+  PrismLayer layer_;
+  std::vector<Handle> handles_;
+  std::vector<Force> forces_;
+  RigidSystem system_;
+  std::vector<BodyState> state_;
+  std::unique_ptr<GlobalSolver> global_;  // made on first use: symbolic analysis once
+};
+
+}  // namespace primo

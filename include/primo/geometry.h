@@ -1,0 +1,34 @@
+#pragma once
+// Face and mesh measures exactly as the scenario format defines them.
+
+#include <vector>
+
+#include "primo/mesh.h"
+
+namespace primo {
+
+// Per-face centroid (vertex average), Newell vector area a_F = 1/2 sum (p_k - c) x (p_k+1 - c),
+// area |a_F| and unit normal a_F / |a_F|, indexed by face index.
+struct FaceGeometry {
+  std::vector<Vec3> centroid;
+  std::vector<Vec3> vector_area;
+  std::vector<double> area;
+  std::vector<Vec3> normal;
+};
+
+FaceGeometry compute_face_geometry(const Mesh& mesh);
+
+// Unit vertex normals: normalized sum of incident faces' vector areas (area-weighted unit
+// normals). A vertex with no face gets the zero vector.
+std::vector<Vec3> compute_vertex_normals(const Mesh& mesh, const FaceGeometry& faces);
+
+// Mean length over unique undirected edges.
+double mean_edge_length(const Mesh& mesh);
+
+// Length of the diagonal of the axis-aligned bounding box of all vertices.
+double bounding_box_diagonal(const Mesh& mesh);
+
+// Area-weighted mean of the given faces' centroids.
+Vec3 area_weighted_centroid(const FaceGeometry& faces, const std::vector<int>& face_indices);
+
+}  // namespace primo

@@ -1,0 +1,58 @@
+#pragma once
+// Global shape matching (paper Sect. 4.2, Appendix A), after Pottmann et al. [PLH02]: every
+// iteration linearizes all bodies' motions as (v, omega), solves the sparse normal equations
+// of the joint and spring energy with CHOLMOD, maps the update back to rigid motions, and
+// halves the step until the energy decreases.
+//
+// Two kinds of step:
+//  - Gauss-Newton (the paper's): first-order motions x + omega x (x - c) + v, projected onto
+//    the closest rigid motion measured on the body's own prism sides (Eq. 7).
+//  - Exact Newton: the same system plus the second-order rotation terms of the true Hessian
+//    in exponential coordinates, applied through the exponential map. Near the minimum it
+//    converges quadratically where Gauss-Newton converges linearly. When that Hessian is not
+//    positive definite the step falls back to Gauss-Newton.
+//
+// The sparsity pattern depends only on which bodies are coupled, so it is analysed once, when
+// the solver is made, and every iteration only refactorizes numerically.
+
+#include <memory>
+#include <vector>
+
+#include "primo/rigid_system.h"
+
+namespace primo {
+
+struct GlobalStep {
+  double energy_before = 0.0;
+  double energy_after = 0.0;
+  double step_scale = 0.0;  // lambda that was accepted (0 when no step lowered the energy)
+  bool exact_hessian = false;
+  bool decreased = false;
+};
+
+class GlobalSolver {
+ public:
+  enum class Factorization { Supernodal, Simplicial };
+
+  explicit GlobalSolver(const RigidSystem& system,
+                        Factorization factorization = Factorization::Supernodal);
+  ~GlobalSolver();
+  GlobalSolver(const GlobalSolver&) = delete;
+  GlobalSolver& operator=(const GlobalSolver&) = delete;
+
+  // One iteration from `state` (updated in place when the energy decreased). With
+  // `exact_hessian` the second-order rotation terms are added when they keep the system
+  // positive definite.
+  GlobalStep iterate(std::vector<BodyState>& state, bool exact_hessian);
+
+  int n_dofs() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+// exp([w]x) by Rodrigues' formula.
+Mat3 rotation_from_vector(const Vec3& w);
+
+}  // namespace primo

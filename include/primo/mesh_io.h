@@ -1,0 +1,37 @@
+#pragma once
+// Reading and writing meshes. Vertex and face order are those of the file, so face and
+// vertex indices in scenarios mean what they mean in the file.
+
+#include <string>
+#include <vector>
+
+#include "primo/mesh.h"
+
+namespace primo {
+
+// A polygon soup as a file lists it: points, and faces as 0-based vertex indices.
+struct PolygonSoup {
+  std::vector<Vec3> points;
+  std::vector<std::vector<int>> faces;
+};
+
+// Reads OBJ, OFF, PLY, STL or OM. OBJ and OFF are parsed here in double precision (OpenMesh 9
+// parses them as float); the others go through OpenMesh. The result is validated as
+// `mesh_from_soup` does. Throws Error naming the file: unreadable, unknown extension,
+// syntax error (with line number), empty mesh, and every problem `validate_soup` reports.
+Mesh load_mesh(const std::string& path);
+
+// Validates a soup and builds the mesh; `source` names it in errors (usually the file path).
+// Throws Error for: no faces, an index out of range, a face with fewer than 3 vertices or a
+// repeated vertex, a non-finite coordinate, a zero-area face, an edge with more than two faces,
+// inconsistent orientation, and a non-manifold vertex. Each message names the first offending
+// face/vertex indices.
+Mesh mesh_from_soup(const PolygonSoup& soup, const std::string& source);
+
+// Writes the mesh by extension (OBJ, OFF, PLY, STL, OM) through a temporary file in the
+// same folder that is renamed into place, so a failure never leaves a partial file. OBJ and
+// OFF are written with 17 significant digits. STL holds triangles only, so n-gons are
+// fan-triangulated in the written file. Throws Error naming the file on failure.
+void save_mesh(const Mesh& mesh, const std::string& path);
+
+}  // namespace primo

@@ -1,0 +1,103 @@
+#pragma once
+// The scenario format, version 1 (docs/scenario-format.md): parsing with strict validation,
+// writing, and resolving selections against a mesh.
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "primo/constraints.h"
+#include "primo/geometry.h"
+#include "primo/mesh.h"
+
+namespace primo {
+
+// Exactly one kind is set, as in the file.
+struct Selection {
+  enum class Kind { Faces, Vertices, Box, Sphere, All };
+  Kind kind = Kind::All;
+  std::vector<int> indices;  // Faces / Vertices
+  Vec3 min = Vec3::Zero();   // Box
+  Vec3 max = Vec3::Zero();   // Box
+  Vec3 center = Vec3::Zero();  // Sphere
+  double radius = 0.0;         // Sphere
+};
+
+struct TransformSpec {
+  Vec3 translate = Vec3::Zero();
+  Vec3 axis = Vec3::UnitZ();
+  double angle_deg = 0.0;
+  std::optional<Vec3> center;  // default: the group's area-weighted centroid
+};
+
+struct RegionSpec {
+  std::string name;   // may be empty
+  std::string where;  // JSON path, e.g. "regions[0]"
+  Selection select;
+  std::optional<double> height;
+  std::optional<double> width;
+};
+
+struct HandleSpec {
+  std::string name;
+  std::string where;
+  Selection select;
+  Fix fix = Fix::All;
+  TransformSpec transform;
+};
+
+struct ForceSpec {
+  std::string name;
+  std::string where;
+  Selection select;
+  Vec3 target_offset = Vec3::Zero();
+  double stiffness = 0.0;
+};
+
+enum class SolverMethod { Default, Global, Local };
+
+struct SolverSpec {
+  int max_iterations = 100;
+  double tolerance = 1e-8;
+  SolverMethod method = SolverMethod::Default;  // our documented extension: solver.method
+};
+
+struct Scenario {
+  std::string source;     // the scenario file's path ("" when parsed from text)
+  std::string mesh;       // as written in the file
+  std::string mesh_path;  // resolved against the scenario file's folder
+  PrismParameters prisms; // global values; factors are filled by resolve_scenario
+  std::vector<RegionSpec> regions;
+  std::vector<HandleSpec> handles;
+  std::vector<ForceSpec> forces;
+  SolverSpec solver;
+};
+
+// Throws Error "<source>: <json path>: <problem>" for malformed JSON (with line/column),
+// unknown keys, wrong types, missing required keys and out-of-range values.
+Scenario parse_scenario(const std::string& json_text, const std::string& source);
+Scenario load_scenario(const std::string& path);
+
+// Serializes a scenario (all keys written explicitly). Parsing the result gives back an
+// equal scenario.
+std::string scenario_to_json(const Scenario& scenario);
+
+// Faces selected, sorted ascending. Throws Error naming `owner` ("handle 'top'",
+// "forces[2]", ...) when an index is out of range or nothing is selected.
+std::vector<int> resolve_selection(const Selection& selection, const Mesh& mesh,
+                                   const FaceGeometry& geometry, const std::string& owner);
+
+// Everything the solver needs, with selections resolved on `mesh`.
+struct ResolvedScenario {
+  PrismParameters prisms;  // with per-face factors from the regions
+  std::vector<Handle> handles;
+  std::vector<Force> forces;
+  SolverSpec solver;
+};
+
+// Applies regions in order (a later region wins per key), resolves handles (a face in two
+// handles is an error naming both) and forces, and turns transforms into rigid motions
+// (default center: the group's area-weighted centroid). Throws Error on every violation.
+ResolvedScenario resolve_scenario(const Scenario& scenario, const Mesh& mesh);
+
+}  // namespace primo

@@ -1,0 +1,214 @@
+#include "primo/deformer.h"
+
+#include <chrono>
+#include <string>
+
+#include "primo/error.h"
+#include "primo/local_solver.h"
+
+namespace primo {
+namespace {
+
+BodyKind body_kind(Fix fix) {
+  switch (fix) {
+    case Fix::All: return BodyKind::Fixed;
+    case Fix::Position: return BodyKind::PinnedPosition;
+    case Fix::Orientation: return BodyKind::FixedRotation;
+  }
+  return BodyKind::Fixed;
+}
+
+std::string handle_label(const Handle& h, size_t index) {
+  return h.name.empty() ? "handles[" + std::to_string(index) + "]" : "handle '" + h.name + "'";
+}
+
+}  // namespace
+
+Deformer::Deformer(const Mesh& mesh, const PrismParameters& params, std::vector<Handle> handles,
+                   std::vector<Force> forces)
+    : layer_(build_prism_layer(mesh, params)),
+      handles_(std::move(handles)),
+      forces_(std::move(forces)) {
+  rest_points_.reserve(mesh.n_vertices());
+  for (auto v : mesh.vertices()) rest_points_.push_back(mesh.point(v));
+
+  const int n_faces = layer_.n_faces();
+  std::vector<int> face_body(n_faces, -1);
+  std::vector<BodyKind> kinds;
+  for (size_t h = 0; h < handles_.size(); ++h) {
+    if (handles_[h].faces.empty()) throw Error(handle_label(handles_[h], h) + " has no faces");
+    for (int f : handles_[h].faces) {
+      if (f < 0 || f >= n_faces)
+        throw Error(handle_label(handles_[h], h) + ": face " + std::to_string(f) +
+                    " is out of range (the mesh has " + std::to_string(n_faces) + " faces)");
+      if (face_body[f] >= 0)
+        throw Error("face " + std::to_string(f) + " is in both " +
+                    handle_label(handles_[face_body[f]], face_body[f]) + " and " +
+                    handle_label(handles_[h], h));
+      face_body[f] = int(h);
+    }
+    kinds.push_back(body_kind(handles_[h].fix));
+  }
+  for (int f = 0; f < n_faces; ++f) {
+    if (face_body[f] >= 0) continue;
+    face_body[f] = int(kinds.size());
+    kinds.push_back(BodyKind::Free);
+  }
+  for (size_t i = 0; i < forces_.size(); ++i)
+    for (int f : forces_[i].faces)
+      if (f < 0 || f >= n_faces)
+        throw Error("forces[" + std::to_string(i) + "]: face " + std::to_string(f) +
+                    " is out of range");
+
+  system_ = build_rigid_system(layer_, face_body, kinds, {});
+  rebuild_springs();
+  reset();
+}
+
+Deformer::~Deformer() = default;
+Deformer::Deformer(Deformer&&) noexcept = default;
+Deformer& Deformer::operator=(Deformer&&) noexcept = default;
+
+void Deformer::rebuild_springs() {
+  std::vector<FaceSpring> springs;
+  for (const Force& force : forces_) {
+    double total_area = 0.0;
+    for (int f : force.faces) total_area += layer_.face_area[f];
+    if (!(total_area > 0.0)) continue;
+    for (int f : force.faces)
+      springs.push_back({f, layer_.face_centroid[f] + force.target_offset,
+                         force.stiffness * layer_.face_area[f] / total_area});
+  }
+  set_springs(system_, layer_, springs);
+}
+
+BodyState Deformer::handle_state(int handle) const {
+  const RigidTransform& t = handles_[handle].transform;
+  return {t.rotation, t.apply(system_.bodies[handle].rest_center)};
+}
+
+void Deformer::reset() {
+  state_.resize(system_.n_bodies());
+  for (int b = 0; b < system_.n_bodies(); ++b)
+    state_[b] = b < int(handles_.size()) ? handle_state(b)
+                                         : BodyState{Mat3::Identity(), system_.bodies[b].rest_center};
+}
+
+void Deformer::set_handle_transform(int handle, const RigidTransform& transform) {
+  if (handle < 0 || handle >= int(handles_.size())) throw Error("no such handle");
+  handles_[handle].transform = transform;
+  const BodyState target = handle_state(handle);
+  BodyState& s = state_[handle];
+  switch (handles_[handle].fix) {
+    case Fix::All: s = target; break;
+    case Fix::Position: s.position = target.position; break;
+    case Fix::Orientation: s.rotation = target.rotation; break;
+  }
+}
+
+void Deformer::set_force_offset(int force, const Vec3& target_offset) {
+  if (force < 0 || force >= int(forces_.size())) throw Error("no such force");
+  forces_[force].target_offset = target_offset;
+  rebuild_springs();
+}
+
+SolveReport Deformer::solve(const SolveOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  SolveReport report;
+  const double diagonal = layer_.bounding_box_diagonal;
+  const double energy_floor = 1e-14 * diagonal * diagonal;
+  double e = energy();
+  report.initial_energy = e;
+  report.stop_reason = "max_iterations";
+  bool exact = false;
+
+  for (int it = 0; it < options.max_iterations; ++it) {
+    if (e <= energy_floor) {
+      report.converged = true;
+      report.stop_reason = "energy floor";
+      break;
+    }
+    double before = e, after = e;
+    if (options.method == SolveMethod::Global) {
+      if (!global_) global_ = std::make_unique<GlobalSolver>(system_);
+      const GlobalStep step = global_->iterate(state_, exact);
+      if (!step.decreased) {
+        // No step along the Newton direction lowers the energy: a minimum to machine
+        // precision.
+        report.converged = true;
+        report.stop_reason = "no further decrease";
+        break;
+      }
+      after = step.energy_after;
+      if (step.exact_hessian) ++report.exact_newton_steps;
+      exact = options.exact_hessian_below > 0 && step.step_scale == 1.0 &&
+              (before - after) < options.exact_hessian_below * before;
+    } else {
+      local_sweep(system_, state_);
+      after = energy();
+    }
+    ++report.iterations;
+    report.energies.push_back(after);
+    e = after;
+    if (before - after < options.tolerance * before) {
+      report.converged = true;
+      report.stop_reason = "tolerance";
+      break;
+    }
+  }
+  if (!report.converged && e <= energy_floor) {
+    report.converged = true;
+    report.stop_reason = "energy floor";
+  }
+  report.energy = e;
+  report.seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return report;
+}
+
+std::vector<Vec3> Deformer::vertex_positions() const {
+  std::vector<Vec3> sum(rest_points_.size(), Vec3::Zero());
+  std::vector<int> count(rest_points_.size(), 0);
+  for (int f = 0; f < layer_.n_faces(); ++f) {
+    const int b = system_.face_body[f];
+    const BodyState& s = state_[b];
+    const Vec3& center = system_.bodies[b].rest_center;
+    for (int k = layer_.corner_begin[f]; k < layer_.corner_begin[f + 1]; ++k) {
+      sum[layer_.corner_vertex[k]] += s.rotation * (layer_.corner_point[k] - center) + s.position;
+      ++count[layer_.corner_vertex[k]];
+    }
+  }
+  for (size_t v = 0; v < sum.size(); ++v)
+    sum[v] = count[v] > 0 ? Vec3(sum[v] / count[v]) : rest_points_[v];
+  return sum;
+}
+
+Mesh Deformer::deformed_mesh(const Mesh& mesh) const {
+  Mesh out = mesh;
+  const std::vector<Vec3> points = vertex_positions();
+  for (auto v : out.vertices()) out.set_point(v, points[v.idx()]);
+  return out;
+}
+
+std::vector<RigidTransform> Deformer::face_motions() const {
+  std::vector<RigidTransform> motions(layer_.n_faces());
+  for (int f = 0; f < layer_.n_faces(); ++f) {
+    const int b = system_.face_body[f];
+    const BodyState& s = state_[b];
+    motions[f].rotation = s.rotation;
+    motions[f].translation = s.position - s.rotation * system_.bodies[b].rest_center;
+  }
+  return motions;
+}
+
+void Deformer::set_face_motions(const std::vector<RigidTransform>& motions) {
+  if (int(motions.size()) != layer_.n_faces()) throw Error("one motion per face is needed");
+  for (int b = int(handles_.size()); b < system_.n_bodies(); ++b) {
+    const RigidSystem::Body& body = system_.bodies[b];
+    const RigidTransform& m = motions[body.faces.front()];
+    state_[b].rotation = m.rotation;
+    state_[b].position = m.apply(body.rest_center);
+  }
+}
+
+}  // namespace primo

@@ -1,0 +1,77 @@
+#include "primo/geometry.h"
+
+#include <cmath>
+#include <limits>
+
+namespace primo {
+
+FaceGeometry compute_face_geometry(const Mesh& mesh) {
+  const size_t n = mesh.n_faces();
+  FaceGeometry g;
+  g.centroid.resize(n);
+  g.vector_area.resize(n);
+  g.area.resize(n);
+  g.normal.resize(n);
+  std::vector<Vec3> corners;
+  for (auto f : mesh.faces()) {
+    corners.clear();
+    for (auto v : f.vertices()) corners.push_back(mesh.point(v));
+    Vec3 c = Vec3::Zero();
+    for (const Vec3& p : corners) c += p;
+    c /= double(corners.size());
+    // Newell's formula about the centroid: exact for planar faces, the natural average
+    // orientation for non-planar ones.
+    Vec3 a = Vec3::Zero();
+    for (size_t k = 0; k < corners.size(); ++k)
+      a += (corners[k] - c).cross(corners[(k + 1) % corners.size()] - c);
+    a *= 0.5;
+    const int i = f.idx();
+    g.centroid[i] = c;
+    g.vector_area[i] = a;
+    g.area[i] = a.norm();
+    g.normal[i] = g.area[i] > 0 ? Vec3(a / g.area[i]) : Vec3::Zero();
+  }
+  return g;
+}
+
+std::vector<Vec3> compute_vertex_normals(const Mesh& mesh, const FaceGeometry& faces) {
+  std::vector<Vec3> normals(mesh.n_vertices(), Vec3::Zero());
+  for (auto f : mesh.faces())
+    for (auto v : f.vertices()) normals[v.idx()] += faces.vector_area[f.idx()];
+  for (Vec3& n : normals) {
+    const double len = n.norm();
+    if (len > 0) n /= len;
+  }
+  return normals;
+}
+
+double mean_edge_length(const Mesh& mesh) {
+  if (mesh.n_edges() == 0) return 0.0;
+  double sum = 0.0;
+  for (auto e : mesh.edges())
+    sum += (mesh.point(e.v0()) - mesh.point(e.v1())).norm();
+  return sum / double(mesh.n_edges());
+}
+
+double bounding_box_diagonal(const Mesh& mesh) {
+  if (mesh.n_vertices() == 0) return 0.0;
+  Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity());
+  Vec3 hi = -lo;
+  for (auto v : mesh.vertices()) {
+    lo = lo.cwiseMin(mesh.point(v));
+    hi = hi.cwiseMax(mesh.point(v));
+  }
+  return (hi - lo).norm();
+}
+
+Vec3 area_weighted_centroid(const FaceGeometry& faces, const std::vector<int>& face_indices) {
+  Vec3 sum = Vec3::Zero();
+  double weight = 0.0;
+  for (int f : face_indices) {
+    sum += faces.area[f] * faces.centroid[f];
+    weight += faces.area[f];
+  }
+  return weight > 0 ? Vec3(sum / weight) : sum;
+}
+
+}  // namespace primo

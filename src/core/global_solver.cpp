@@ -1,0 +1,390 @@
+#include "primo/global_solver.h"
+
+#include <Eigen/CholmodSupport>
+#include <Eigen/Geometry>
+#include <Eigen/SparseCore>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <unordered_map>
+
+#include "primo/horn.h"
+
+namespace primo {
+namespace {
+
+using Mat6 = Eigen::Matrix<double, 6, 6>;
+using Vec6 = Eigen::Matrix<double, 6, 1>;
+using SparseMatrix = Eigen::SparseMatrix<double>;
+
+// Local dof order of a body: v (0..2), omega (3..5).
+int active_mask(BodyKind kind) {
+  switch (kind) {
+    case BodyKind::Free: return 0x3F;
+    case BodyKind::PinnedPosition: return 0x38;
+    case BodyKind::FixedRotation: return 0x07;
+    case BodyKind::Fixed: return 0;
+  }
+  return 0;
+}
+
+Mat3 cross_matrix(const Vec3& a) {
+  Mat3 m;
+  m << 0, -a.z(), a.y(), a.z(), 0, -a.x(), -a.y(), a.x(), 0;
+  return m;
+}
+
+// w (|y|^2 I - y y^T) = w [y]x^T [y]x
+void add_rotational_inertia(Eigen::Ref<Mat3> m, const Vec3& y, double w) {
+  m.noalias() -= w * y * y.transpose();
+  m.diagonal().array() += w * y.squaredNorm();
+}
+
+// Gauss-Newton blocks of one residual r = X_0 - X_1 with X_s = position_s + y_s (a point) or
+// X_s = y_s (a vector, no translation), linearized as dX = v + omega x y.
+struct FeatureBlocks {
+  Mat6 h00 = Mat6::Zero(), h11 = Mat6::Zero(), h01 = Mat6::Zero();
+  Vec6 g0 = Vec6::Zero(), g1 = Vec6::Zero();
+  Mat3 s0 = Mat3::Zero(), s1 = Mat3::Zero();  // second-order rotation terms
+
+  void add(const Vec3& y0, const Vec3& y1, const Vec3& r, double w, bool point) {
+    if (point) {
+      h00.block<3, 3>(0, 0).diagonal().array() += w;
+      h11.block<3, 3>(0, 0).diagonal().array() += w;
+      h01.block<3, 3>(0, 0).diagonal().array() -= w;
+      const Mat3 c0 = w * cross_matrix(y0), c1 = w * cross_matrix(y1);
+      h00.block<3, 3>(0, 3) -= c0;
+      h00.block<3, 3>(3, 0) += c0;
+      h11.block<3, 3>(0, 3) -= c1;
+      h11.block<3, 3>(3, 0) += c1;
+      h01.block<3, 3>(0, 3) += c1;
+      h01.block<3, 3>(3, 0) -= c0;
+      g0.head<3>() += w * r;
+      g1.head<3>() -= w * r;
+    }
+    add_rotational_inertia(h00.block<3, 3>(3, 3), y0, w);
+    add_rotational_inertia(h11.block<3, 3>(3, 3), y1, w);
+    h01.block<3, 3>(3, 3).noalias() += w * y1 * y0.transpose();
+    h01.block<3, 3>(3, 3).diagonal().array() -= w * y0.dot(y1);
+    g0.tail<3>() += w * y0.cross(r);
+    g1.tail<3>() -= w * y1.cross(r);
+    // d^2/domega^2 of r . (1/2) omega x (omega x y) = (r y^T + y r^T) / 2 - (r . y) I
+    const Mat3 ry0 = r * y0.transpose(), ry1 = r * y1.transpose();
+    s0 += w * 0.5 * (ry0 + ry0.transpose());
+    s0.diagonal().array() -= w * r.dot(y0);
+    s1 -= w * 0.5 * (ry1 + ry1.transpose());
+    s1.diagonal().array() += w * r.dot(y1);
+  }
+};
+
+}  // namespace
+
+Mat3 rotation_from_vector(const Vec3& w) {
+  const double theta = w.norm();
+  const Mat3 k = cross_matrix(w);
+  if (theta < 1e-8) return Mat3::Identity() + k + 0.5 * k * k;
+  const double a = std::sin(theta) / theta;
+  const double b = (1.0 - std::cos(theta)) / (theta * theta);
+  return Mat3::Identity() + a * k + b * k * k;
+}
+
+struct GlobalSolver::Impl {
+  const RigidSystem& sys;
+  Factorization factorization;
+  std::vector<std::array<int, 6>> dof;  // global index of each local dof, -1 when inactive
+  std::vector<bool> active;
+  int n = 0;
+
+  // Off-diagonal blocks: one per coupled pair of active bodies, stored as (higher body,
+  // lower body) so they land in the lower triangle.
+  std::vector<std::pair<int, int>> pairs;
+  std::vector<int> coupling_pair;  // -1 when one side is inactive
+
+  std::vector<Mat6> diag, off;
+  std::vector<Mat3> second;
+  std::vector<Vec6> grad;
+
+  SparseMatrix matrix;
+  std::vector<std::array<int, 36>> diag_slots, off_slots;
+  Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> supernodal;
+  Eigen::CholmodSimplicialLLT<SparseMatrix, Eigen::Lower> simplicial;
+
+  Impl(const RigidSystem& s, Factorization f) : sys(s), factorization(f) {}
+
+  void build_pattern();
+  void assemble(const std::vector<BodyState>& state);
+  bool factorize(double damping, bool with_second_order, const std::vector<BodyState>& state);
+  Eigen::VectorXd solve(const Eigen::VectorXd& rhs);
+  std::vector<BodyState> apply(const std::vector<BodyState>& state, const Eigen::VectorXd& delta,
+                               double lambda, bool exponential) const;
+};
+
+void GlobalSolver::Impl::build_pattern() {
+  const int nb = sys.n_bodies();
+  dof.assign(nb, {-1, -1, -1, -1, -1, -1});
+  active.assign(nb, false);
+  for (int b = 0; b < nb; ++b) {
+    const int mask = active_mask(sys.bodies[b].kind);
+    for (int k = 0; k < 6; ++k)
+      if (mask & (1 << k)) dof[b][k] = n++;
+    active[b] = mask != 0;
+  }
+
+  std::unordered_map<long long, int> pair_index;
+  coupling_pair.assign(sys.couplings.size(), -1);
+  for (size_t c = 0; c < sys.couplings.size(); ++c) {
+    const int b0 = sys.couplings[c].body[0], b1 = sys.couplings[c].body[1];
+    if (!active[b0] || !active[b1]) continue;
+    const int hi = std::max(b0, b1), lo = std::min(b0, b1);
+    const long long key = (long long)hi * nb + lo;
+    auto [it, inserted] = pair_index.emplace(key, int(pairs.size()));
+    if (inserted) pairs.emplace_back(hi, lo);
+    coupling_pair[c] = it->second;
+  }
+
+  std::vector<Eigen::Triplet<double>> triplets;
+  auto add_block = [&](int rb, int cb) {
+    for (int r = 0; r < 6; ++r)
+      for (int c = 0; c < 6; ++c) {
+        const int gr = dof[rb][r], gc = dof[cb][c];
+        if (gr >= 0 && gc >= 0 && gr >= gc) triplets.emplace_back(gr, gc, 0.0);
+      }
+  };
+  for (int b = 0; b < nb; ++b) add_block(b, b);
+  for (auto [hi, lo] : pairs) add_block(hi, lo);
+  matrix.resize(n, n);
+  matrix.setFromTriplets(triplets.begin(), triplets.end());
+  matrix.makeCompressed();
+
+  auto slot = [&](int gr, int gc) {
+    const int* rows = matrix.innerIndexPtr();
+    const int begin = matrix.outerIndexPtr()[gc], end = matrix.outerIndexPtr()[gc + 1];
+    return int(std::lower_bound(rows + begin, rows + end, gr) - rows);
+  };
+  auto block_slots = [&](int rb, int cb) {
+    std::array<int, 36> s;
+    for (int r = 0; r < 6; ++r)
+      for (int c = 0; c < 6; ++c) {
+        const int gr = dof[rb][r], gc = dof[cb][c];
+        s[r * 6 + c] = (gr >= 0 && gc >= 0 && gr >= gc) ? slot(gr, gc) : -1;
+      }
+    return s;
+  };
+  diag_slots.resize(nb);
+  for (int b = 0; b < nb; ++b) diag_slots[b] = block_slots(b, b);
+  off_slots.resize(pairs.size());
+  for (size_t p = 0; p < pairs.size(); ++p) off_slots[p] = block_slots(pairs[p].first, pairs[p].second);
+
+  diag.assign(nb, Mat6::Zero());
+  second.assign(nb, Mat3::Zero());
+  grad.assign(nb, Vec6::Zero());
+  off.assign(pairs.size(), Mat6::Zero());
+
+  supernodal.cholmod().print = 0;
+  simplicial.cholmod().print = 0;
+  if (n > 0) {
+    if (factorization == Factorization::Supernodal) supernodal.analyzePattern(matrix);
+    else simplicial.analyzePattern(matrix);
+  }
+}
+
+void GlobalSolver::Impl::assemble(const std::vector<BodyState>& state) {
+  std::fill(diag.begin(), diag.end(), Mat6::Zero());
+  std::fill(off.begin(), off.end(), Mat6::Zero());
+  std::fill(second.begin(), second.end(), Mat3::Zero());
+  std::fill(grad.begin(), grad.end(), Vec6::Zero());
+
+  for (size_t ci = 0; ci < sys.couplings.size(); ++ci) {
+    const RigidSystem::Coupling& c = sys.couplings[ci];
+    const int b0 = c.body[0], b1 = c.body[1];
+    if (!active[b0] && !active[b1]) continue;
+    const BodyState& s0 = state[b0];
+    const BodyState& s1 = state[b1];
+    FeatureBlocks fb;
+    const Vec3 p0 = s0.rotation * c.local[0].mean, p1 = s1.rotation * c.local[1].mean;
+    fb.add(p0, p1, (p0 + s0.position) - (p1 + s1.position), c.weight, true);
+    const Vec3 u0 = s0.rotation * c.local[0].du, u1 = s1.rotation * c.local[1].du;
+    fb.add(u0, u1, u0 - u1, c.weight * kModeWeightDu, false);
+    const Vec3 v0 = s0.rotation * c.local[0].dv, v1 = s1.rotation * c.local[1].dv;
+    fb.add(v0, v1, v0 - v1, c.weight * kModeWeightDv, false);
+    const Vec3 t0 = s0.rotation * c.local[0].duv, t1 = s1.rotation * c.local[1].duv;
+    fb.add(t0, t1, t0 - t1, c.weight * kModeWeightDuv, false);
+
+    diag[b0] += fb.h00;
+    diag[b1] += fb.h11;
+    grad[b0] += fb.g0;
+    grad[b1] += fb.g1;
+    second[b0] += fb.s0;
+    second[b1] += fb.s1;
+    const int p = coupling_pair[ci];
+    if (p >= 0) {
+      if (b0 == pairs[p].first) off[p] += fb.h01;
+      else off[p] += fb.h01.transpose();
+    }
+  }
+
+  for (const RigidSystem::Spring& s : sys.springs) {
+    if (!active[s.body]) continue;
+    const BodyState& st = state[s.body];
+    FeatureBlocks fb;
+    const Vec3 y = st.rotation * s.local;
+    fb.add(y, Vec3::Zero(), y + st.position - s.target, s.weight, true);
+    diag[s.body] += fb.h00;
+    grad[s.body] += fb.g0;
+    second[s.body] += fb.s0;
+  }
+}
+
+bool GlobalSolver::Impl::factorize(double damping, bool with_second_order,
+                                   const std::vector<BodyState>& state) {
+  double* values = matrix.valuePtr();
+  std::fill(values, values + matrix.nonZeros(), 0.0);
+  for (int b = 0; b < sys.n_bodies(); ++b) {
+    if (!active[b]) continue;
+    Mat6 block = diag[b];
+    if (with_second_order) block.block<3, 3>(3, 3) += second[b];
+    if (damping > 0.0) {
+      // Levenberg-Marquardt term in the body's own metric (its prism sides): it makes
+      // bodies with nothing acting on them, and rigid modes of unanchored parts, solvable.
+      const RigidSystem::Body& body = sys.bodies[b];
+      const Mat3& R = state[b].rotation;
+      const Vec3 first = R * (body.metric_weight * body.metric_mean);
+      const Mat3 second_moment = R * body.metric_pinned * R.transpose();
+      Mat6 metric = Mat6::Zero();
+      metric.block<3, 3>(0, 0).diagonal().array() = body.metric_weight;
+      metric.block<3, 3>(0, 3) = -cross_matrix(first);
+      metric.block<3, 3>(3, 0) = cross_matrix(first);
+      metric.block<3, 3>(3, 3) = -second_moment;
+      metric.block<3, 3>(3, 3).diagonal().array() += second_moment.trace();
+      block += damping * metric;
+    }
+    const auto& slots = diag_slots[b];
+    for (int k = 0; k < 36; ++k)
+      if (slots[k] >= 0) values[slots[k]] += block(k / 6, k % 6);
+  }
+  for (size_t p = 0; p < pairs.size(); ++p) {
+    const auto& slots = off_slots[p];
+    for (int k = 0; k < 36; ++k)
+      if (slots[k] >= 0) values[slots[k]] += off[p](k / 6, k % 6);
+  }
+  if (factorization == Factorization::Supernodal) {
+    supernodal.factorize(matrix);
+    return supernodal.info() == Eigen::Success;
+  }
+  simplicial.factorize(matrix);
+  return simplicial.info() == Eigen::Success;
+}
+
+Eigen::VectorXd GlobalSolver::Impl::solve(const Eigen::VectorXd& rhs) {
+  if (factorization == Factorization::Supernodal) return supernodal.solve(rhs);
+  return simplicial.solve(rhs);
+}
+
+std::vector<BodyState> GlobalSolver::Impl::apply(const std::vector<BodyState>& state,
+                                                 const Eigen::VectorXd& delta, double lambda,
+                                                 bool exponential) const {
+  std::vector<BodyState> next = state;
+  for (int b = 0; b < sys.n_bodies(); ++b) {
+    if (!active[b]) continue;
+    Vec3 v = Vec3::Zero(), w = Vec3::Zero();
+    for (int k = 0; k < 3; ++k) {
+      if (dof[b][k] >= 0) v[k] = lambda * delta[dof[b][k]];
+      if (dof[b][k + 3] >= 0) w[k] = lambda * delta[dof[b][k + 3]];
+    }
+    const BodyState& s = state[b];
+    BodyState& t = next[b];
+    const RigidSystem::Body& body = sys.bodies[b];
+    if (exponential) {
+      t.rotation = rotation_from_vector(w) * s.rotation;
+      t.position = s.position + v;
+      continue;
+    }
+    // Closest rigid motion to the affine map x -> x + w x (x - position) + v, measured on
+    // the body's prism sides (paper Eq. 7): Horn on S = C (L R)^T with L = I + [w]x.
+    const Mat3 LR = s.rotation + cross_matrix(w) * s.rotation;
+    switch (body.kind) {
+      case BodyKind::Free: {
+        t.rotation = horn_rotation(body.metric_centered * LR.transpose(), s.rotation);
+        const Vec3 arm = s.rotation * body.metric_mean;
+        const Vec3 moved = s.position + arm + w.cross(arm) + v;
+        t.position = moved - t.rotation * body.metric_mean;
+        break;
+      }
+      case BodyKind::PinnedPosition:
+        t.rotation = horn_rotation(body.metric_pinned * LR.transpose(), s.rotation);
+        break;
+      case BodyKind::FixedRotation:
+        t.position = s.position + v;
+        break;
+      case BodyKind::Fixed:
+        break;
+    }
+  }
+  return next;
+}
+
+GlobalSolver::GlobalSolver(const RigidSystem& system, Factorization factorization)
+    : impl_(std::make_unique<Impl>(system, factorization)) {
+  impl_->build_pattern();
+}
+
+GlobalSolver::~GlobalSolver() = default;
+
+int GlobalSolver::n_dofs() const { return impl_->n; }
+
+GlobalStep GlobalSolver::iterate(std::vector<BodyState>& state, bool exact_hessian) {
+  Impl& m = *impl_;
+  GlobalStep step;
+  step.energy_before = m.sys.energy(state);
+  step.energy_after = step.energy_before;
+  if (m.n == 0) return step;
+
+  m.assemble(state);
+  double trace_h = 0.0, trace_k = 0.0;
+  for (int b = 0; b < m.sys.n_bodies(); ++b) {
+    if (!m.active[b]) continue;
+    trace_h += m.diag[b].trace();
+    const auto& body = m.sys.bodies[b];
+    trace_k += 3.0 * body.metric_weight + 2.0 * body.metric_pinned.trace();
+  }
+  // Tiny relative damping: invisible on well-posed problems, enough to make rank-deficient
+  // ones factorizable. Raised when CHOLMOD still reports a non-positive pivot.
+  double damping = trace_k > 0 ? 1e-10 * std::max(trace_h, 1e-300) / trace_k : 0.0;
+
+  Eigen::VectorXd rhs(m.n);
+  for (int b = 0; b < m.sys.n_bodies(); ++b)
+    for (int k = 0; k < 6; ++k)
+      if (m.dof[b][k] >= 0) rhs[m.dof[b][k]] = -m.grad[b][k];
+
+  // One step of the given kind: factorize, solve, halve the step until the energy drops.
+  auto try_step = [&](bool exact) {
+    bool factored = m.factorize(damping, exact, state);
+    if (!factored && exact) return false;  // Hessian not positive definite here
+    for (int retry = 0; !factored && retry < 6; ++retry) {
+      damping = std::max(damping * 1e3, 1e-12);
+      factored = m.factorize(damping, false, state);
+    }
+    if (!factored) return false;
+    const Eigen::VectorXd delta = m.solve(rhs);
+    if (!delta.allFinite()) return false;
+    double lambda = 1.0;
+    for (int halving = 0; halving <= 40; ++halving, lambda *= 0.5) {
+      std::vector<BodyState> trial = m.apply(state, delta, lambda, exact);
+      const double e = m.sys.energy(trial);
+      if (e < step.energy_before) {
+        state.swap(trial);
+        step.energy_after = e;
+        step.step_scale = lambda;
+        step.exact_hessian = exact;
+        step.decreased = true;
+        return true;
+      }
+    }
+    return false;
+  };
+  if (exact_hessian && try_step(true)) return step;
+  try_step(false);
+  return step;
+}
+
+}  // namespace primo

@@ -1,0 +1,115 @@
+#include "primo/prism_layer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "primo/error.h"
+#include "primo/geometry.h"
+
+namespace primo {
+
+PatchCorners PrismLayer::side_patch(int face, int k) const {
+  const int begin = corner_begin[face];
+  const int n = degree(face);
+  const int a = begin + k, b = begin + (k + 1) % n;
+  return {corner_point[a] - corner_offset[a], corner_point[b] - corner_offset[b],
+          corner_point[a] + corner_offset[a], corner_point[b] + corner_offset[b]};
+}
+
+namespace {
+
+double factor_or_one(const std::vector<double>& factors, int face) {
+  return factors.empty() ? 1.0 : factors[face];
+}
+
+void check_parameters(const Mesh& mesh, const PrismParameters& p) {
+  if (!std::isfinite(p.height) || !std::isfinite(p.normal_blend) || !std::isfinite(p.width))
+    throw Error("prism parameters must be finite");
+  for (const auto* factors : {&p.face_height_factor, &p.face_width_factor}) {
+    if (!factors->empty() && factors->size() != mesh.n_faces())
+      throw Error("per-face prism factors must have one value per face");
+    for (double f : *factors)
+      if (!std::isfinite(f)) throw Error("per-face prism factors must be finite");
+  }
+}
+
+}  // namespace
+
+PrismLayer build_prism_layer(const Mesh& mesh, const PrismParameters& params) {
+  check_parameters(mesh, params);
+  const FaceGeometry geometry = compute_face_geometry(mesh);
+  const std::vector<Vec3> vertex_normal = compute_vertex_normals(mesh, geometry);
+
+  PrismLayer layer;
+  layer.mean_edge_length = mean_edge_length(mesh);
+  layer.bounding_box_diagonal = bounding_box_diagonal(mesh);
+  layer.n_vertices = int(mesh.n_vertices());
+  layer.face_centroid = geometry.centroid;
+  layer.face_area = geometry.area;
+
+  // A vertex's height factor is the minimum over its incident faces, so that with blend 0
+  // and width 1 both prisms of a joint share its corners at rest.
+  std::vector<double> vertex_height(mesh.n_vertices(), 1.0);
+  for (auto v : mesh.vertices()) {
+    double factor = std::numeric_limits<double>::infinity();
+    for (auto f : v.faces()) factor = std::min(factor, factor_or_one(params.face_height_factor, f.idx()));
+    if (std::isfinite(factor)) vertex_height[v.idx()] = factor;
+    vertex_height[v.idx()] *= params.height * layer.mean_edge_length;
+  }
+
+  const double beta = params.normal_blend;
+  layer.corner_begin.reserve(mesh.n_faces() + 1);
+  layer.corner_begin.push_back(0);
+  for (auto f : mesh.faces()) {
+    const int i = f.idx();
+    const Vec3& c = geometry.centroid[i];
+    const double width = params.width * factor_or_one(params.face_width_factor, i);
+    for (auto v : f.vertices()) {
+      const Vec3 blended = (1.0 - beta) * vertex_normal[v.idx()] + beta * geometry.normal[i];
+      const double len = blended.norm();
+      if (!(len > 0.0) || !std::isfinite(len))
+        throw Error("face " + std::to_string(i) + ", vertex " + std::to_string(v.idx()) +
+                    ": the blended extrusion direction has zero length (normal_blend " +
+                    std::to_string(beta) + ")");
+      layer.corner_vertex.push_back(v.idx());
+      layer.corner_point.push_back(c + width * (mesh.point(v) - c));
+      layer.corner_offset.push_back(vertex_height[v.idx()] / len * blended);
+    }
+    layer.corner_begin.push_back(int(layer.corner_vertex.size()));
+  }
+
+  // Corner position of vertex `v` within face `f`.
+  auto corner_of = [&](int f, int v) {
+    for (int k = layer.corner_begin[f]; k < layer.corner_begin[f + 1]; ++k)
+      if (layer.corner_vertex[k] == v) return k - layer.corner_begin[f];
+    return -1;
+  };
+
+  for (auto e : mesh.edges()) {
+    if (e.is_boundary()) continue;
+    auto h = e.h0();
+    const int fi = h.face().idx(), fj = h.opp().face().idx();
+    const int a = h.from().idx(), b = h.to().idx();
+    Joint joint;
+    joint.face[0] = fi;
+    joint.face[1] = fj;
+    joint.vertex[0] = a;
+    joint.vertex[1] = b;
+    const double length = (mesh.point(h.to()) - mesh.point(h.from())).norm();
+    joint.weight = length * length / (geometry.area[fi] + geometry.area[fj]);
+    for (int s = 0; s < 2; ++s) {
+      const int f = joint.face[s];
+      const int ka = layer.corner_begin[f] + corner_of(f, a);
+      const int kb = layer.corner_begin[f] + corner_of(f, b);
+      joint.side[s] = patch_modes({layer.corner_point[ka] - layer.corner_offset[ka],
+                                   layer.corner_point[kb] - layer.corner_offset[kb],
+                                   layer.corner_point[ka] + layer.corner_offset[ka],
+                                   layer.corner_point[kb] + layer.corner_offset[kb]});
+    }
+    layer.joints.push_back(joint);
+  }
+  return layer;
+}
+
+}  // namespace primo

@@ -1,0 +1,36 @@
+#include "test_support.h"
+
+#include <atomic>
+#include <filesystem>
+#include <fstream>
+#include <unistd.h>
+
+namespace fs = std::filesystem;
+
+namespace primo::test {
+
+std::string source_path(const std::string& relative) {
+  return std::string(PRIMO_SOURCE_DIR) + "/" + relative;
+}
+
+std::string shared_path(const std::string& relative) {
+  return std::string(PRIMO_SHARED_DIR) + "/" + relative;
+}
+
+bool exists(const std::string& path) { return fs::exists(path); }
+
+std::string temp_dir() {
+  static std::atomic<int> counter{0};
+  fs::path dir = fs::temp_directory_path() /
+                 ("primo-test-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir.string();
+}
+
+void write_text(const std::string& path, const std::string& text) {
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  out << text;
+}
+
+}  // namespace primo::test

@@ -1,0 +1,18 @@
+#pragma once
+// Helpers shared by the unit tests: paths to shipped data and temporary files.
+
+#include <string>
+
+namespace primo::test {
+
+// <repo>/<relative>
+std::string source_path(const std::string& relative);
+// <repo>/../shared/<relative>; shared data is optional, tests skip with a message when absent.
+std::string shared_path(const std::string& relative);
+bool exists(const std::string& path);
+// A fresh, empty directory under the system temp dir, unique per call.
+std::string temp_dir();
+// Writes `text` to `path` (truncating).
+void write_text(const std::string& path, const std::string& text);
+
+}  // namespace primo::test
