@@ -34,3 +34,17 @@ void write_text(const std::string& path, const std::string& text) {
 }
 
 }  // namespace primo::test
+
+#include "primo/geometry.h"
+
+namespace primo::test {
+
+std::vector<int> faces_where(const Mesh& mesh, const std::function<bool(const Vec3&)>& keep) {
+  const FaceGeometry g = compute_face_geometry(mesh);
+  std::vector<int> faces;
+  for (int f = 0; f < int(mesh.n_faces()); ++f)
+    if (keep(g.centroid[f])) faces.push_back(f);
+  return faces;
+}
+
+}  // namespace primo::test

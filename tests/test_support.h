@@ -16,3 +16,15 @@ std::string temp_dir();
 void write_text(const std::string& path, const std::string& text);
 
 }  // namespace primo::test
+
+#include <functional>
+#include <vector>
+
+#include "primo/mesh.h"
+
+namespace primo::test {
+
+// Indices of the faces whose centroid satisfies `keep`.
+std::vector<int> faces_where(const Mesh& mesh, const std::function<bool(const Vec3&)>& keep);
+
+}  // namespace primo::test

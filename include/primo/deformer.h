@@ -23,7 +23,7 @@ struct SolveOptions {
   double tolerance = 1e-8;  // stop when an iteration lowers E by less than tolerance * E
   // Global only: switch to exact-Hessian Newton steps once Gauss-Newton takes full steps
   // that lower the energy by less than this fraction (0 disables exact steps).
-  double exact_hessian_below = 1e-2;
+  double exact_hessian_below = 1e-1;
 };
 
 struct SolveReport {

@@ -19,7 +19,8 @@ struct FaceGeometry {
 FaceGeometry compute_face_geometry(const Mesh& mesh);
 
 // Unit vertex normals: normalized sum of incident faces' vector areas (area-weighted unit
-// normals). A vertex with no face gets the zero vector.
+// normals). A vertex with no face, or whose vector areas cancel (to 1e-12 of their summed
+// areas), gets the zero vector.
 std::vector<Vec3> compute_vertex_normals(const Mesh& mesh, const FaceGeometry& faces);
 
 // Mean length over unique undirected edges.

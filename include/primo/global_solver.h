@@ -30,6 +30,17 @@ struct GlobalStep {
   bool decreased = false;
 };
 
+// Accumulated wall time per phase since the solver was made (or timings were reset).
+struct GlobalSolverTimings {
+  double assembly = 0.0;
+  double factorization = 0.0;
+  double solve = 0.0;
+  double line_search = 0.0;  // rigid updates and energy evaluations
+  int factorizations = 0;
+  int failed_factorizations = 0;  // not positive definite
+  int energy_evaluations = 0;
+};
+
 class GlobalSolver {
  public:
   enum class Factorization { Supernodal, Simplicial };
@@ -46,6 +57,8 @@ class GlobalSolver {
   GlobalStep iterate(std::vector<BodyState>& state, bool exact_hessian);
 
   int n_dofs() const;
+  const GlobalSolverTimings& timings() const;
+  void reset_timings();
 
  private:
   struct Impl;

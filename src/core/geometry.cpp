@@ -36,11 +36,17 @@ FaceGeometry compute_face_geometry(const Mesh& mesh) {
 
 std::vector<Vec3> compute_vertex_normals(const Mesh& mesh, const FaceGeometry& faces) {
   std::vector<Vec3> normals(mesh.n_vertices(), Vec3::Zero());
+  std::vector<double> area_sum(mesh.n_vertices(), 0.0);
   for (auto f : mesh.faces())
-    for (auto v : f.vertices()) normals[v.idx()] += faces.vector_area[f.idx()];
-  for (Vec3& n : normals) {
-    const double len = n.norm();
-    if (len > 0) n /= len;
+    for (auto v : f.vertices()) {
+      normals[v.idx()] += faces.vector_area[f.idx()];
+      area_sum[v.idx()] += faces.area[f.idx()];
+    }
+  for (size_t v = 0; v < normals.size(); ++v) {
+    // Vector areas that cancel up to rounding (a doubly covered sheet) leave a noise
+    // direction; report those as zero so that callers can reject them.
+    const double len = normals[v].norm();
+    normals[v] = len > 1e-12 * area_sum[v] ? Vec3(normals[v] / len) : Vec3::Zero();
   }
   return normals;
 }

@@ -5,6 +5,7 @@
 #include <Eigen/SparseCore>
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <unordered_map>
 
@@ -16,6 +17,11 @@ namespace {
 using Mat6 = Eigen::Matrix<double, 6, 6>;
 using Vec6 = Eigen::Matrix<double, 6, 1>;
 using SparseMatrix = Eigen::SparseMatrix<double>;
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
 
 // Local dof order of a body: v (0..2), omega (3..5).
 int active_mask(BodyKind kind) {
@@ -106,6 +112,10 @@ struct GlobalSolver::Impl {
 
   SparseMatrix matrix;
   std::vector<std::array<int, 36>> diag_slots, off_slots;
+  // Levenberg-Marquardt damping of exact-Hessian steps, relative to the system's scale, kept
+  // across iterations: raised while the Hessian is indefinite, lowered after full steps.
+  double exact_damping = 0.0;
+  GlobalSolverTimings timings;
   Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> supernodal;
   Eigen::CholmodSimplicialLLT<SparseMatrix, Eigen::Lower> simplicial;
 
@@ -267,12 +277,19 @@ bool GlobalSolver::Impl::factorize(double damping, bool with_second_order,
     for (int k = 0; k < 36; ++k)
       if (slots[k] >= 0) values[slots[k]] += off[p](k / 6, k % 6);
   }
+  const auto start = Clock::now();
+  bool ok;
   if (factorization == Factorization::Supernodal) {
     supernodal.factorize(matrix);
-    return supernodal.info() == Eigen::Success;
+    ok = supernodal.info() == Eigen::Success;
+  } else {
+    simplicial.factorize(matrix);
+    ok = simplicial.info() == Eigen::Success;
   }
-  simplicial.factorize(matrix);
-  return simplicial.info() == Eigen::Success;
+  timings.factorization += seconds_since(start);
+  ++timings.factorizations;
+  if (!ok) ++timings.failed_factorizations;
+  return ok;
 }
 
 Eigen::VectorXd GlobalSolver::Impl::solve(const Eigen::VectorXd& rhs) {
@@ -331,6 +348,8 @@ GlobalSolver::GlobalSolver(const RigidSystem& system, Factorization factorizatio
 GlobalSolver::~GlobalSolver() = default;
 
 int GlobalSolver::n_dofs() const { return impl_->n; }
+const GlobalSolverTimings& GlobalSolver::timings() const { return impl_->timings; }
+void GlobalSolver::reset_timings() { impl_->timings = {}; }
 
 GlobalStep GlobalSolver::iterate(std::vector<BodyState>& state, bool exact_hessian) {
   Impl& m = *impl_;
@@ -339,7 +358,9 @@ GlobalStep GlobalSolver::iterate(std::vector<BodyState>& state, bool exact_hessi
   step.energy_after = step.energy_before;
   if (m.n == 0) return step;
 
+  auto phase = Clock::now();
   m.assemble(state);
+  m.timings.assembly += seconds_since(phase);
   double trace_h = 0.0, trace_k = 0.0;
   for (int b = 0; b < m.sys.n_bodies(); ++b) {
     if (!m.active[b]) continue;
@@ -356,30 +377,56 @@ GlobalStep GlobalSolver::iterate(std::vector<BodyState>& state, bool exact_hessi
     for (int k = 0; k < 6; ++k)
       if (m.dof[b][k] >= 0) rhs[m.dof[b][k]] = -m.grad[b][k];
 
+  const double scale = trace_k > 0 ? std::max(trace_h, 1e-300) / trace_k : 0.0;
+
   // One step of the given kind: factorize, solve, halve the step until the energy drops.
   auto try_step = [&](bool exact) {
-    bool factored = m.factorize(damping, exact, state);
-    if (!factored && exact) return false;  // Hessian not positive definite here
-    for (int retry = 0; !factored && retry < 6; ++retry) {
-      damping = std::max(damping * 1e3, 1e-12);
+    bool factored = false;
+    if (exact) {
+      // Indefinite far from the minimum: damp towards Gauss-Newton-like steps until positive
+      // definite, and give up on exact steps for this iteration after a few tries.
+      for (int attempt = 0; attempt < 4 && !factored; ++attempt) {
+        factored = m.factorize(damping + m.exact_damping * scale, true, state);
+        if (!factored) m.exact_damping = m.exact_damping == 0.0 ? 1e-4 : m.exact_damping * 30.0;
+      }
+      if (!factored) return false;
+    } else {
       factored = m.factorize(damping, false, state);
+      for (int retry = 0; !factored && retry < 6; ++retry) {
+        damping = std::max(damping * 1e3, 1e-12);
+        factored = m.factorize(damping, false, state);
+      }
+      if (!factored) return false;
     }
-    if (!factored) return false;
+    auto solve_start = Clock::now();
     const Eigen::VectorXd delta = m.solve(rhs);
+    m.timings.solve += seconds_since(solve_start);
     if (!delta.allFinite()) return false;
+    const auto search_start = Clock::now();
+    struct AddTime {
+      double& total;
+      Clock::time_point start;
+      ~AddTime() { total += seconds_since(start); }
+    } add_time{m.timings.line_search, search_start};
     double lambda = 1.0;
     for (int halving = 0; halving <= 40; ++halving, lambda *= 0.5) {
       std::vector<BodyState> trial = m.apply(state, delta, lambda, exact);
       const double e = m.sys.energy(trial);
+      ++m.timings.energy_evaluations;
       if (e < step.energy_before) {
         state.swap(trial);
         step.energy_after = e;
         step.step_scale = lambda;
         step.exact_hessian = exact;
         step.decreased = true;
+        if (exact) {
+          if (lambda == 1.0) m.exact_damping = m.exact_damping < 1e-7 ? 0.0 : m.exact_damping / 10;
+          else m.exact_damping = std::max(m.exact_damping * 10, 1e-4);
+        }
         return true;
       }
     }
+    if (exact) m.exact_damping = std::max(m.exact_damping * 10, 1e-4);
     return false;
   };
   if (exact_hessian && try_step(true)) return step;
