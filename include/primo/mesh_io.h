@@ -18,7 +18,7 @@ struct PolygonSoup {
 // Reads OBJ, OFF, PLY, STL or OM. OBJ and OFF are parsed here in double precision (OpenMesh 9
 // parses them as float); the others go through OpenMesh. The result is validated as
 // `mesh_from_soup` does. Throws Error naming the file: unreadable, unknown extension,
-// syntax error (with line number), empty mesh, and every problem `validate_soup` reports.
+// syntax error (with line number), empty mesh, and every problem `mesh_from_soup` reports.
 Mesh load_mesh(const std::string& path);
 
 // Validates a soup and builds the mesh; `source` names it in errors (usually the file path).

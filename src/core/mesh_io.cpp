@@ -1,0 +1,643 @@
+// Mesh files. OBJ and OFF are read and written here, in double precision: OpenMesh 9 reads both
+// (and writes OBJ) through float, which would move every vertex by up to 1e-8 relative. PLY,
+// STL, OM and binary OFF go through OpenMesh. Whatever the format, the result is validated by
+// mesh_from_soup, so every format is held to the same rules.
+
+// OpenMesh's IO must be included before the mesh type (it registers readers and writers).
+// clang-format off
+#include <OpenMesh/Core/IO/MeshIO.hh>
+#include <OpenMesh/Core/System/omstream.hh>
+#include "primo/mesh_io.h"
+// clang-format on
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cctype>
+#include <cerrno>
+#include <charconv>
+#include <climits>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <iostream>
+#include <optional>
+#include <sstream>
+#include <string_view>
+#include <system_error>
+
+#include "primo/error.h"
+
+namespace fs = std::filesystem;
+
+namespace primo {
+namespace {
+
+enum class Format { Obj, Off, Ply, Stl, Om };
+
+const char* const kSupportedExtensions = ".obj, .off, .ply, .stl or .om";
+
+[[noreturn]] void fail(const std::string& path, const std::string& what) {
+  throw Error(path + ": " + what);
+}
+
+[[noreturn]] void fail_at_line(const std::string& path, int line, const std::string& what) {
+  fail(path, "line " + std::to_string(line) + ": " + what);
+}
+
+// OpenMesh logs warnings and errors to the console; the library prints nothing. Disabling its
+// streams is not enough: the OM writer re-enables omlog() (and then prints "#bytes written"),
+// so the streams are also cut off from the console.
+void silence_openmesh() {
+  static const bool silenced = [] {
+    for (OpenMesh::mostream* stream : {&omlog(), &omout(), &omerr()}) {
+      stream->disable();
+      stream->disconnect(std::clog);
+      stream->disconnect(std::cout);
+      stream->disconnect(std::cerr);
+    }
+    return true;
+  }();
+  (void)silenced;
+}
+
+std::string lowercase(std::string text) {
+  for (char& c : text) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return text;
+}
+
+std::string extension_of(const std::string& path) {
+  return lowercase(fs::path(path).extension().string());
+}
+
+std::optional<Format> format_of(const std::string& extension) {
+  if (extension == ".obj") return Format::Obj;
+  if (extension == ".off") return Format::Off;
+  if (extension == ".ply") return Format::Ply;
+  if (extension == ".stl") return Format::Stl;
+  if (extension == ".om") return Format::Om;
+  return std::nullopt;
+}
+
+Format format_or_fail(const std::string& path, const std::string& action) {
+  const std::string extension = extension_of(path);
+  if (extension.empty())
+    fail(path, action + ": the file name has no extension (expected " + kSupportedExtensions + ")");
+  const std::optional<Format> format = format_of(extension);
+  if (!format)
+    fail(path, action + ": unknown mesh file extension '" + fs::path(path).extension().string() +
+                   "' (expected " + kSupportedExtensions + ")");
+  return *format;
+}
+
+std::string in_quotes(std::string_view text) {
+  constexpr size_t kMaxShown = 40;
+  if (text.size() > kMaxShown) return "'" + std::string(text.substr(0, kMaxShown)) + "...'";
+  return "'" + std::string(text) + "'";
+}
+
+// ---------------------------------------------------------------------------------------------
+// Reading files and splitting text
+
+// Fails with the system's reason when the file cannot be opened, so that the OpenMesh path (which
+// only says "false") reports the same errors as ours.
+void check_readable(const std::string& path) {
+  std::error_code ignored;
+  if (fs::is_directory(path, ignored)) fail(path, "cannot read: this is a folder, not a file");
+  std::FILE* file = std::fopen(path.c_str(), "rb");
+  if (!file) fail(path, std::string("cannot open: ") + std::strerror(errno));
+  std::fclose(file);
+}
+
+std::string read_file(const std::string& path) {
+  check_readable(path);
+  std::FILE* file = std::fopen(path.c_str(), "rb");
+  if (!file) fail(path, std::string("cannot open: ") + std::strerror(errno));
+  std::string bytes;
+  char buffer[1 << 16];
+  size_t count;
+  while ((count = std::fread(buffer, 1, sizeof buffer, file)) > 0) bytes.append(buffer, count);
+  const bool failed = std::ferror(file) != 0;
+  const int error = errno;
+  std::fclose(file);
+  if (failed) fail(path, std::string("cannot read: ") + std::strerror(error));
+  return bytes;
+}
+
+// Physical lines with 1-based numbers, without the line break (LF or CRLF) and without a
+// '#' comment. A UTF-8 byte order mark at the start is skipped.
+class LineReader {
+ public:
+  explicit LineReader(std::string_view text) : text_(text) {
+    if (text_.substr(0, 3) == "\xEF\xBB\xBF") position_ = 3;
+  }
+
+  bool next(std::string_view& line) {
+    if (position_ >= text_.size()) return false;
+    size_t end = text_.find('\n', position_);
+    if (end == std::string_view::npos) end = text_.size();
+    line = text_.substr(position_, end - position_);
+    position_ = end + 1;
+    ++number_;
+    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+    const size_t comment = line.find('#');
+    if (comment != std::string_view::npos) line = line.substr(0, comment);
+    return true;
+  }
+
+  int number() const { return number_; }
+
+ private:
+  std::string_view text_;
+  size_t position_ = 0;
+  int number_ = 0;
+};
+
+bool is_blank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
+
+void split_words(std::string_view line, std::vector<std::string_view>& words) {
+  words.clear();
+  size_t i = 0;
+  while (i < line.size()) {
+    while (i < line.size() && is_blank(line[i])) ++i;
+    const size_t begin = i;
+    while (i < line.size() && !is_blank(line[i])) ++i;
+    if (i > begin) words.push_back(line.substr(begin, i - begin));
+  }
+}
+
+// from_chars (locale-independent, exact) for the whole word; a leading '+' is allowed.
+bool parse_double(std::string_view word, double& value) {
+  if (word.size() > 1 && word[0] == '+' && word[1] != '-' && word[1] != '+') word.remove_prefix(1);
+  const char* end = word.data() + word.size();
+  const auto result = std::from_chars(word.data(), end, value);
+  if (result.ptr != end || word.empty()) return false;
+  if (result.ec == std::errc::result_out_of_range) {
+    // Too large overflows to infinity (reported as non-finite later); too small is zero.
+    const size_t exponent = word.find_first_of("eE");
+    const bool tiny = exponent != std::string_view::npos && exponent + 1 < word.size() &&
+                      word[exponent + 1] == '-';
+    const double magnitude = tiny ? 0.0 : HUGE_VAL;
+    value = word[0] == '-' ? -magnitude : magnitude;
+    return true;
+  }
+  return result.ec == std::errc();
+}
+
+bool parse_integer(std::string_view word, long long& value) {
+  if (word.size() > 1 && word[0] == '+' && word[1] != '-' && word[1] != '+') word.remove_prefix(1);
+  const char* end = word.data() + word.size();
+  const auto result = std::from_chars(word.data(), end, value);
+  return !word.empty() && result.ec == std::errc() && result.ptr == end;
+}
+
+// ---------------------------------------------------------------------------------------------
+// OBJ
+
+// Statements that carry nothing a polygon mesh needs (texture coordinates, normals, grouping,
+// materials, display attributes, points and lines).
+bool is_ignored_obj_statement(std::string_view keyword) {
+  static const char* const kIgnored[] = {
+      "vt",       "vn",         "vp",        "g",      "o",      "s",     "mg",
+      "usemtl",   "mtllib",     "l",         "p",      "lod",    "bevel", "c_interp",
+      "d_interp", "shadow_obj", "trace_obj", "maplib", "usemap", "ctech", "stech"};
+  for (const char* ignored : kIgnored)
+    if (keyword == ignored) return true;
+  return false;
+}
+
+bool is_free_form_obj_statement(std::string_view keyword) {
+  static const char* const kFreeForm[] = {"cstype", "deg",  "bmat", "step", "curv", "curv2",
+                                          "surf",   "parm", "trim", "hole", "scrv", "sp",
+                                          "end",    "con",  "call", "csh"};
+  for (const char* free_form : kFreeForm)
+    if (keyword == free_form) return true;
+  return false;
+}
+
+// One face corner: "i", "i/t", "i//n" or "i/t/n". Returns the vertex reference i as written.
+bool parse_obj_corner(std::string_view word, long long& vertex) {
+  long long ignored;
+  const size_t slash = word.find('/');
+  if (!parse_integer(word.substr(0, slash), vertex)) return false;
+  if (slash == std::string_view::npos) return true;
+  const std::string_view rest = word.substr(slash + 1);
+  const size_t second_slash = rest.find('/');
+  const std::string_view texture = rest.substr(0, second_slash);
+  if (second_slash == std::string_view::npos) return parse_integer(texture, ignored);
+  if (!texture.empty() && !parse_integer(texture, ignored)) return false;
+  return parse_integer(rest.substr(second_slash + 1), ignored);
+}
+
+PolygonSoup parse_obj(const std::string& path, std::string_view text) {
+  PolygonSoup soup;
+  std::vector<int> face_lines;             // for index errors, which can only be judged at the end
+  std::vector<long long> face_references;  // the 1-based (or relative) indices as written
+  LineReader lines(text);
+  std::string_view line;
+  std::string continued;
+  std::vector<std::string_view> words;
+  while (lines.next(line)) {
+    const int line_number = lines.number();
+    // A trailing backslash continues the statement on the next line.
+    if (!line.empty() && line.back() == '\\') {
+      continued.assign(line.substr(0, line.size() - 1));
+      continued += ' ';
+      std::string_view more;
+      while (lines.next(more)) {
+        const bool continues = !more.empty() && more.back() == '\\';
+        continued.append(more.substr(0, more.size() - (continues ? 1 : 0)));
+        continued += ' ';
+        if (!continues) break;
+      }
+      line = continued;
+    }
+    split_words(line, words);
+    if (words.empty()) continue;
+    const std::string_view keyword = words[0];
+
+    if (keyword == "v") {
+      if (words.size() < 4) fail_at_line(path, line_number, "expected 3 coordinates after 'v'");
+      double values[3];
+      for (size_t i = 1; i < words.size(); ++i) {
+        double value;
+        if (!parse_double(words[i], value))
+          fail_at_line(path, line_number, in_quotes(words[i]) + " is not a number");
+        if (i <= 3) values[i - 1] = value;  // then an optional weight or color: ignored
+      }
+      soup.points.emplace_back(values[0], values[1], values[2]);
+    } else if (keyword == "f" || keyword == "fo") {
+      if (words.size() < 2) fail_at_line(path, line_number, "expected vertex indices after 'f'");
+      std::vector<int> face;
+      face.reserve(words.size() - 1);
+      const long long n_points = static_cast<long long>(soup.points.size());
+      for (size_t i = 1; i < words.size(); ++i) {
+        long long reference;
+        if (!parse_obj_corner(words[i], reference))
+          fail_at_line(
+              path, line_number,
+              in_quotes(words[i]) + " is not a face vertex (expected i, i/t, i//n or i/t/n)");
+        if (reference == 0)
+          fail_at_line(path, line_number, "vertex index 0 is invalid (OBJ indices start at 1)");
+        // Negative indices count back from the last vertex read so far.
+        const long long index = reference < 0 ? n_points + reference : reference - 1;
+        if (index < 0)
+          fail_at_line(path, line_number,
+                       "relative vertex index " + std::to_string(reference) + " points before " +
+                           "the first vertex (" + std::to_string(n_points) + " read so far)");
+        if (index > INT_MAX)
+          fail_at_line(path, line_number,
+                       "vertex index " + std::to_string(reference) + " is too large");
+        face.push_back(int(index));
+        face_references.push_back(reference);
+      }
+      soup.faces.push_back(std::move(face));
+      face_lines.push_back(line_number);
+    } else if (is_ignored_obj_statement(keyword)) {
+      continue;
+    } else if (is_free_form_obj_statement(keyword)) {
+      fail_at_line(
+          path, line_number,
+          "free-form geometry (" + in_quotes(keyword) + ") is not supported, only polygons");
+    } else {
+      fail_at_line(path, line_number, "unknown OBJ statement " + in_quotes(keyword));
+    }
+  }
+
+  // Positive indices may refer to vertices listed later, so the range is checked here, with
+  // the line and the index as the file writes them (1-based).
+  size_t reference = 0;
+  for (size_t f = 0; f < soup.faces.size(); ++f)
+    for (int index : soup.faces[f]) {
+      const long long written = face_references[reference++];
+      if (index < int(soup.points.size())) continue;
+      fail_at_line(path, face_lines[f],
+                   "face " + std::to_string(f) + ": vertex index " + std::to_string(written) +
+                       " is out of range (the file has " + std::to_string(soup.points.size()) +
+                       " vertices)");
+    }
+  return soup;
+}
+
+// ---------------------------------------------------------------------------------------------
+// OFF
+
+struct OffHeader {
+  bool valid = false;
+  std::string unsupported;  // why a valid keyword cannot be read, if it cannot
+};
+
+// [ST][C][N][4][n]OFF. Texture coordinates, colors and normals follow the coordinates of each
+// vertex and are skipped; 4D and n-dimensional OFF are not meshes in 3D.
+OffHeader parse_off_keyword(std::string_view word) {
+  OffHeader header;
+  if (word.size() < 3 || word.substr(word.size() - 3) != "OFF") return header;
+  std::string_view prefix = word.substr(0, word.size() - 3);
+  const auto take = [&prefix](std::string_view part) {
+    if (prefix.substr(0, part.size()) != part) return false;
+    prefix.remove_prefix(part.size());
+    return true;
+  };
+  take("ST");
+  take("C");
+  take("N");
+  const bool four_d = take("4");
+  const bool n_d = take("n");
+  if (!prefix.empty()) return header;
+  header.valid = true;
+  if (four_d || n_d) header.unsupported = "only 3D OFF is supported, not " + in_quotes(word);
+  return header;
+}
+
+// Returns nothing for binary OFF, which OpenMesh reads.
+std::optional<PolygonSoup> parse_off(const std::string& path, std::string_view text) {
+  LineReader lines(text);
+  std::string_view line;
+  std::vector<std::string_view> words;
+  const auto next_words = [&] {
+    while (lines.next(line)) {
+      split_words(line, words);
+      if (!words.empty()) return true;
+    }
+    return false;
+  };
+
+  if (!next_words()) fail(path, "the file is empty (expected an 'OFF' header)");
+  // The header keyword is optional in the OFF format; the counts may share its line.
+  size_t counts_start = 0;
+  double ignored_number;
+  if (!parse_double(words[0], ignored_number)) {
+    const OffHeader header = parse_off_keyword(words[0]);
+    if (!header.valid)
+      fail_at_line(path, lines.number(), "expected the 'OFF' header, found " + in_quotes(words[0]));
+    if (!header.unsupported.empty()) fail_at_line(path, lines.number(), header.unsupported);
+    if (words.size() > 1 && words[1] == "BINARY") return std::nullopt;
+    counts_start = 1;
+    if (words.size() == 1) {
+      if (!next_words()) fail(path, "the file ends after the header (expected the counts 'V F E')");
+      counts_start = 0;
+    }
+  }
+  const size_t n_counts = words.size() - counts_start;
+  long long counts[3] = {0, 0, 0};
+  bool counts_ok = n_counts == 2 || n_counts == 3;
+  for (size_t i = 0; counts_ok && i < n_counts; ++i)
+    counts_ok =
+        parse_integer(words[counts_start + i], counts[i]) && counts[i] >= 0 && counts[i] <= INT_MAX;
+  if (!counts_ok)
+    fail_at_line(path, lines.number(),
+                 "expected the counts 'V F E' (vertices, faces, edges) as non-negative integers");
+  const long long n_vertices = counts[0], n_faces = counts[1];
+
+  PolygonSoup soup;
+  // A corrupt count must not allocate gigabytes: a vertex takes at least 6 bytes of text.
+  soup.points.reserve(size_t(std::min<long long>(n_vertices, (long long)text.size() / 6)));
+  for (long long v = 0; v < n_vertices; ++v) {
+    if (!next_words())
+      fail(path, "expected " + std::to_string(n_vertices) + " vertices, but the file ends after " +
+                     std::to_string(v));
+    if (words.size() < 3)
+      fail_at_line(path, lines.number(),
+                   "vertex " + std::to_string(v) + ": expected 3 coordinates, found " +
+                       std::to_string(words.size()));
+    double values[3];
+    for (size_t i = 0; i < words.size(); ++i) {
+      double value;
+      if (!parse_double(words[i], value))
+        fail_at_line(
+            path, lines.number(),
+            "vertex " + std::to_string(v) + ": " + in_quotes(words[i]) + " is not a number");
+      if (i < 3) values[i] = value;  // then texture coordinates, normal or color: skipped
+    }
+    soup.points.emplace_back(values[0], values[1], values[2]);
+  }
+
+  soup.faces.reserve(size_t(std::min<long long>(n_faces, (long long)text.size() / 8)));
+  for (long long f = 0; f < n_faces; ++f) {
+    if (!next_words())
+      fail(path, "expected " + std::to_string(n_faces) + " faces, but the file ends after " +
+                     std::to_string(f));
+    long long degree;
+    if (!parse_integer(words[0], degree) || degree < 0)
+      fail_at_line(path, lines.number(),
+                   "face " + std::to_string(f) + ": expected the vertex count, found " +
+                       in_quotes(words[0]));
+    if (degree > static_cast<long long>(words.size()) - 1)
+      fail_at_line(path, lines.number(),
+                   "face " + std::to_string(f) + ": expected " + std::to_string(degree) +
+                       " vertex indices, found " + std::to_string(words.size() - 1));
+    std::vector<int> face(static_cast<size_t>(degree));
+    for (size_t i = 1; i < words.size(); ++i) {
+      if (i <= size_t(degree)) {
+        long long index;
+        if (!parse_integer(words[i], index) || index < INT_MIN || index > INT_MAX)
+          fail_at_line(
+              path, lines.number(),
+              "face " + std::to_string(f) + ": " + in_quotes(words[i]) + " is not a vertex index");
+        face[i - 1] = int(index);
+      } else if (!parse_double(words[i], ignored_number)) {  // a color: skipped
+        fail_at_line(path, lines.number(),
+                     "face " + std::to_string(f) + ": " + in_quotes(words[i]) + " is not a number");
+      }
+    }
+    soup.faces.push_back(std::move(face));
+  }
+
+  if (next_words())
+    fail_at_line(path, lines.number(),
+                 "unexpected data after the last of the " + std::to_string(n_faces) +
+                     " faces the header declares");
+  return soup;
+}
+
+// ---------------------------------------------------------------------------------------------
+// OpenMesh formats
+
+// OpenMesh merges STL's repeated corners into shared vertices, and it may already have changed
+// non-manifold input (it duplicates vertices rather than fail); validation sees the result.
+PolygonSoup read_with_openmesh(const std::string& path, const std::string& format_name) {
+  silence_openmesh();
+  check_readable(path);
+  Mesh mesh;
+  OpenMesh::IO::Options options;  // positions and faces only
+  if (!OpenMesh::IO::read_mesh(mesh, path, options))
+    fail(path, "cannot read: not a valid " + format_name + " file (OpenMesh rejected it)");
+  PolygonSoup soup;
+  soup.points.reserve(mesh.n_vertices());
+  for (auto v : mesh.vertices()) soup.points.push_back(mesh.point(v));
+  soup.faces.reserve(mesh.n_faces());
+  for (auto f : mesh.faces()) {
+    std::vector<int> face;
+    for (auto v : f.vertices()) face.push_back(v.idx());
+    soup.faces.push_back(std::move(face));
+  }
+  return soup;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Writing
+
+// 17 significant digits read back as the same double; to_chars ignores the C locale.
+void append_number(std::string& out, double value) {
+  char buffer[64];
+  const auto result =
+      std::to_chars(buffer, buffer + sizeof buffer, value, std::chars_format::general, 17);
+  out.append(buffer, result.ptr);
+}
+
+void append_point(std::string& out, const Vec3& p) {
+  append_number(out, p.x());
+  out += ' ';
+  append_number(out, p.y());
+  out += ' ';
+  append_number(out, p.z());
+}
+
+std::string obj_text(const Mesh& mesh) {
+  std::string out = "# PriMo: " + std::to_string(mesh.n_vertices()) + " vertices, " +
+                    std::to_string(mesh.n_faces()) + " faces\n";
+  for (auto v : mesh.vertices()) {
+    out += "v ";
+    append_point(out, mesh.point(v));
+    out += '\n';
+  }
+  for (auto f : mesh.faces()) {
+    out += 'f';
+    for (auto v : f.vertices()) {
+      out += ' ';
+      out += std::to_string(v.idx() + 1);
+    }
+    out += '\n';
+  }
+  return out;
+}
+
+std::string off_text(const Mesh& mesh) {
+  std::string out = "OFF\n" + std::to_string(mesh.n_vertices()) + " " +
+                    std::to_string(mesh.n_faces()) + " " + std::to_string(mesh.n_edges()) + "\n";
+  for (auto v : mesh.vertices()) {
+    append_point(out, mesh.point(v));
+    out += '\n';
+  }
+  for (auto f : mesh.faces()) {
+    out += std::to_string(f.valence());
+    for (auto v : f.vertices()) {
+      out += ' ';
+      out += std::to_string(v.idx());
+    }
+    out += '\n';
+  }
+  return out;
+}
+
+// STL holds triangles only (OpenMesh silently skips other faces), so each face becomes a fan
+// around its first corner.
+Mesh fan_triangulated(const Mesh& mesh) {
+  Mesh triangles;
+  for (auto v : mesh.vertices()) triangles.add_vertex(mesh.point(v));
+  std::vector<Mesh::VertexHandle> corners;
+  for (auto f : mesh.faces()) {
+    corners.clear();
+    for (auto v : f.vertices()) corners.push_back(Mesh::VertexHandle(v.idx()));
+    for (size_t k = 1; k + 1 < corners.size(); ++k)
+      triangles.add_face(corners[0], corners[k], corners[k + 1]);
+  }
+  return triangles;
+}
+
+// OpenMesh's file writers report success even when the disk is full (they do not check the
+// stream), so OpenMesh writes into memory and the bytes are written here with every error checked.
+std::string openmesh_bytes(const Mesh& mesh, const std::string& path, const std::string& extension,
+                           OpenMesh::IO::Options options) {
+  silence_openmesh();
+  std::ostringstream stream(std::ios::out | std::ios::binary);
+  if (!OpenMesh::IO::write_mesh(mesh, stream, extension, options, 17) || !stream)
+    fail(path, "cannot save: OpenMesh could not write the " + extension + " data");
+  return stream.str();
+}
+
+void write_bytes(const std::string& temp_path, const std::string& bytes,
+                 const std::string& target_path) {
+  std::FILE* file = std::fopen(temp_path.c_str(), "wb");
+  if (!file)
+    fail(target_path, "cannot save: cannot create the temporary file " + in_quotes(temp_path) +
+                          ": " + std::strerror(errno));
+  int error = 0;
+  if (std::fwrite(bytes.data(), 1, bytes.size(), file) != bytes.size() || std::fflush(file) != 0)
+    error = errno;
+  if (std::fclose(file) != 0 && error == 0) error = errno;
+  if (error != 0) fail(target_path, std::string("cannot save: ") + std::strerror(error));
+}
+
+}  // namespace
+
+Mesh load_mesh(const std::string& path) {
+  const Format format = format_or_fail(path, "cannot read");
+  switch (format) {
+    case Format::Obj:
+      return mesh_from_soup(parse_obj(path, read_file(path)), path);
+    case Format::Off: {
+      const std::string text = read_file(path);
+      std::optional<PolygonSoup> soup = parse_off(path, text);
+      if (!soup) soup = read_with_openmesh(path, "binary OFF");
+      return mesh_from_soup(*soup, path);
+    }
+    case Format::Ply:
+      return mesh_from_soup(read_with_openmesh(path, "PLY"), path);
+    case Format::Stl:
+      return mesh_from_soup(read_with_openmesh(path, "STL"), path);
+    case Format::Om:
+      return mesh_from_soup(read_with_openmesh(path, "OM"), path);
+  }
+  fail(path, "cannot read: unhandled format");
+}
+
+void save_mesh(const Mesh& mesh, const std::string& path) {
+  const Format format = format_or_fail(path, "cannot save");
+  const fs::path target(path);
+  const fs::path folder = target.has_parent_path() ? target.parent_path() : fs::path(".");
+  std::error_code error;
+  if (!fs::is_directory(folder, error))
+    fail(path, "cannot save: the folder " + in_quotes(folder.string()) + " does not exist");
+
+  // Hidden, unique, and ending in the real extension; the name part is shortened so that the
+  // temporary name stays within the file system's limit when the target's name is long.
+  static std::atomic<unsigned> save_counter{0};
+  const std::string name = target.filename().string();
+  const fs::path temp = folder / ("." + name.substr(0, 100) + ".tmp-" + std::to_string(::getpid()) +
+                                  "-" + std::to_string(save_counter++) + extension_of(path));
+  try {
+    std::string bytes;
+    switch (format) {
+      case Format::Obj:
+        bytes = obj_text(mesh);
+        break;
+      case Format::Off:
+        bytes = off_text(mesh);
+        break;
+      case Format::Ply:
+        bytes = openmesh_bytes(mesh, path, "ply", OpenMesh::IO::Options::Default);
+        break;
+      case Format::Om:
+        bytes = openmesh_bytes(mesh, path, "om", OpenMesh::IO::Options::Default);
+        break;
+      case Format::Stl:
+        // Binary STL: exact float32, a fraction of the size of OpenMesh's 10-digit ASCII.
+        bytes = openmesh_bytes(fan_triangulated(mesh), path, "stl", OpenMesh::IO::Options::Binary);
+        break;
+    }
+    write_bytes(temp.string(), bytes, path);
+    if (std::rename(temp.c_str(), path.c_str()) != 0)
+      fail(path, std::string("cannot save: cannot move the temporary file into place: ") +
+                     std::strerror(errno));
+  } catch (const Error&) {
+    fs::remove(temp, error);
+    throw;
+  } catch (const std::exception& e) {
+    fs::remove(temp, error);
+    fail(path, std::string("cannot save: ") + e.what());
+  }
+}
+
+}  // namespace primo
