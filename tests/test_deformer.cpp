@@ -353,3 +353,16 @@ TEST(Deformer, PlateBlendSmoothsANoisySphereWithoutShrinking) {
   EXPECT_LT(roughness(smoothed), 0.5 * roughness(sphere));
   EXPECT_NEAR(total_area(smoothed) / total_area(sphere), 1.0, 0.03);
 }
+
+TEST(Deformer, KeepsSolvingAfterBeingMoved) {
+  BentCylinder c = bent_cylinder(12, 8, 45.0, 0.0);
+  Deformer first(c.mesh, PrismParameters{}, c.handles);
+  SolveOptions one;
+  one.max_iterations = 1;
+  first.solve(one);  // makes the global solver, which refers to the deformer's system
+  Deformer moved(std::move(first));
+  const SolveReport r = moved.solve(SolveOptions{});
+  EXPECT_TRUE(r.converged);
+  Deformer reference(c.mesh, PrismParameters{}, c.handles);
+  EXPECT_NEAR(r.energy, reference.solve(SolveOptions{}).energy, 1e-9);
+}

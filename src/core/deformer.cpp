@@ -66,8 +66,29 @@ Deformer::Deformer(const Mesh& mesh, const PrismParameters& params, std::vector<
 }
 
 Deformer::~Deformer() = default;
-Deformer::Deformer(Deformer&&) noexcept = default;
-Deformer& Deformer::operator=(Deformer&&) noexcept = default;
+// The global solver refers to system_, whose address changes with a move: drop it, it is
+// rebuilt (with its symbolic analysis) on the next global iteration.
+Deformer::Deformer(Deformer&& other) noexcept
+    : rest_points_(std::move(other.rest_points_)),
+      layer_(std::move(other.layer_)),
+      handles_(std::move(other.handles_)),
+      forces_(std::move(other.forces_)),
+      system_(std::move(other.system_)),
+      state_(std::move(other.state_)) {
+  other.global_.reset();
+}
+
+Deformer& Deformer::operator=(Deformer&& other) noexcept {
+  rest_points_ = std::move(other.rest_points_);
+  layer_ = std::move(other.layer_);
+  handles_ = std::move(other.handles_);
+  forces_ = std::move(other.forces_);
+  system_ = std::move(other.system_);
+  state_ = std::move(other.state_);
+  global_.reset();
+  other.global_.reset();
+  return *this;
+}
 
 void Deformer::rebuild_springs() {
   std::vector<FaceSpring> springs;

@@ -1,0 +1,22 @@
+#pragma once
+// Subcommands of the `primo` executable. Each registers its options on the CLI11 app and
+// returns it with the function that runs it and gives the process exit code.
+
+#include <functional>
+
+namespace CLI {
+class App;
+}
+
+namespace primo::app {
+
+struct Command {
+  CLI::App* subcommand;
+  std::function<int()> run;
+};
+
+Command register_deform(CLI::App& app);
+Command register_bench(CLI::App& app);
+Command register_generate(CLI::App& app);
+
+}  // namespace primo::app

@@ -1,0 +1,103 @@
+// `primo deform SCENARIO.json -o OUT.ext [--stats STATS.json] [--solver global|local]`
+
+#include <CLI/CLI.hpp>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <nlohmann/json.hpp>
+
+#include "commands.h"
+#include "output_files.h"
+#include "primo/deformer.h"
+#include "primo/error.h"
+#include "primo/mesh_io.h"
+#include "primo/scenario.h"
+
+namespace primo::app {
+namespace {
+
+struct DeformArguments {
+  std::string scenario;
+  std::string output;
+  std::string stats;
+  std::string solver;
+};
+
+SolveMethod choose_method(const std::string& flag, SolverMethod from_scenario) {
+  if (flag == "local") return SolveMethod::Local;
+  if (flag == "global") return SolveMethod::Global;
+  if (from_scenario == SolverMethod::Local) return SolveMethod::Local;
+  return SolveMethod::Global;  // the best available
+}
+
+const char* method_name(SolveMethod m) { return m == SolveMethod::Local ? "local" : "global"; }
+
+int run_deform(const DeformArguments& args) {
+  check_mesh_output_path(args.output);
+  const Scenario scenario = load_scenario(args.scenario);
+  const Mesh mesh = load_mesh(scenario.mesh_path);
+  const ResolvedScenario resolved = resolve_scenario(scenario, mesh);
+
+  Deformer deformer(mesh, resolved.prisms, resolved.handles, resolved.forces);
+  SolveOptions options;
+  options.method = choose_method(args.solver, resolved.solver.method);
+  options.max_iterations = resolved.solver.max_iterations;
+  options.tolerance = resolved.solver.tolerance;
+  const SolveReport report = deformer.solve(options);
+
+  const Mesh result = deformer.deformed_mesh(mesh);
+  for (auto v : result.vertices())
+    if (!result.point(v).allFinite())
+      throw Error(args.scenario + ": the solve produced a non-finite position at vertex " +
+                  std::to_string(v.idx()) + "; nothing was written");
+  if (!std::isfinite(report.energy))
+    throw Error(args.scenario + ": the solve produced a non-finite energy; nothing was written");
+
+  std::string stats_text;
+  if (!args.stats.empty()) {
+    nlohmann::json stats = {
+        {"energy", report.energy},
+        {"initial_energy", report.initial_energy},
+        {"iterations", report.iterations},
+        {"converged", report.converged},
+        {"stop_reason", report.stop_reason},
+        {"seconds", report.seconds},
+        {"faces", mesh.n_faces()},
+        {"vertices", mesh.n_vertices()},
+        {"solver", method_name(options.method)},
+        {"exact_newton_steps", report.exact_newton_steps},
+        {"energies", report.energies},
+    };
+    stats_text = stats.dump(2) + "\n";
+  }
+  save_mesh(result, args.output);
+  if (!args.stats.empty()) {
+    try {
+      write_text_atomically(args.stats, stats_text);
+    } catch (const Error&) {
+      std::remove(args.output.c_str());  // both results or neither
+      throw;
+    }
+  }
+  if (!report.converged)
+    std::fprintf(stderr,
+                 "primo deform: warning: %s: not converged after %d iterations (energy %.6g); "
+                 "raise solver.max_iterations\n",
+                 args.scenario.c_str(), report.iterations, report.energy);
+  return 0;
+}
+
+}  // namespace
+
+Command register_deform(CLI::App& app) {
+  auto args = std::make_shared<DeformArguments>();
+  CLI::App* cmd = app.add_subcommand("deform", "Solve a scenario file and write the deformed mesh");
+  cmd->add_option("scenario", args->scenario, "Scenario file (primo-scenario/1 JSON)")->required();
+  cmd->add_option("-o,--output", args->output, "Deformed mesh (.obj .off .ply .stl .om)")->required();
+  cmd->add_option("--stats", args->stats, "Write solve statistics as JSON");
+  cmd->add_option("--solver", args->solver, "Solver: global (default) or local")
+      ->check(CLI::IsMember({"global", "local"}));
+  return {cmd, [args] { return run_deform(*args); }};
+}
+
+}  // namespace primo::app

@@ -1,0 +1,37 @@
+// `primo`: headless subcommands of the PriMo deformation tool.
+
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <exception>
+#include <vector>
+
+#include "commands.h"
+#include "primo/error.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{"PriMo: coupled prisms for intuitive surface modeling"};
+  app.require_subcommand(1);
+  const std::vector<primo::app::Command> commands = {primo::app::register_deform(app),
+                                                     primo::app::register_generate(app),
+                                                     primo::app::register_bench(app)};
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  }
+  for (const auto& [sub, run] : commands) {
+    if (!sub->parsed()) continue;
+    try {
+      return run();
+    } catch (const primo::Error& e) {
+      std::fprintf(stderr, "primo %s: error: %s\n", sub->get_name().c_str(), e.what());
+    } catch (const std::bad_alloc&) {
+      std::fprintf(stderr, "primo %s: error: out of memory\n", sub->get_name().c_str());
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "primo %s: error: %s\n", sub->get_name().c_str(), e.what());
+    }
+    return 1;
+  }
+  return 1;
+}

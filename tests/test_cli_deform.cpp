@@ -1,0 +1,203 @@
+// `primo deform` end to end: results, statistics, and one clear error line (with no output
+// file left behind) for every kind of bad input.
+
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "primo/mesh_io.h"
+#include "test_support.h"
+
+namespace fs = std::filesystem;
+using primo::test::write_text;
+
+namespace {
+
+struct CommandResult {
+  int exit_code;
+  std::string out, err;
+};
+
+std::string read_file(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+CommandResult run_primo(const std::string& arguments) {
+  const std::string dir = primo::test::temp_dir();
+  const std::string command = std::string(PRIMO_EXECUTABLE) + " " + arguments + " >" + dir +
+                              "/out.txt 2>" + dir + "/err.txt";
+  const int status = std::system(command.c_str());
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, read_file(dir + "/out.txt"),
+          read_file(dir + "/err.txt")};
+}
+
+int count_lines(const std::string& s) { return int(std::count(s.begin(), s.end(), '\n')); }
+
+const char* kCube = R"(v 0 0 0
+v 1 0 0
+v 1 1 0
+v 0 1 0
+v 0 0 1
+v 1 0 1
+v 1 1 1
+v 0 1 1
+f 1 4 3 2
+f 5 6 7 8
+f 1 2 6 5
+f 2 3 7 6
+f 3 4 8 7
+f 4 1 5 8
+)";
+
+std::string scenario_json(const std::string& mesh, const std::string& extra = "") {
+  return R"({"format": "primo-scenario/1", "mesh": ")" + mesh + R"(",
+  "handles": [
+    {"name": "bottom", "select": {"faces": [0]}, "fix": "all"},
+    {"name": "top", "select": {"faces": [1]}, "fix": "all",
+     "transform": {"translate": [0.2, 0, 0], "axis": [0, 0, 1], "angle_deg": 20}}
+  ])" + extra + "}";
+}
+
+class DeformCli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir = primo::test::temp_dir();
+    write_text(dir + "/cube.obj", kCube);
+    write_text(dir + "/ok.json", scenario_json("cube.obj"));
+  }
+  // Asserts a failure: non-zero exit, exactly one line on stderr that contains `needle`, and
+  // no file at `output`.
+  void expect_error(const std::string& arguments, const std::string& needle,
+                    const std::string& output) {
+    const CommandResult r = run_primo(arguments);
+    EXPECT_NE(r.exit_code, 0) << arguments;
+    EXPECT_EQ(count_lines(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find(needle), std::string::npos) << "stderr: " << r.err;
+    EXPECT_NE(r.err.find("error"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(output)) << output;
+    // No temporary files either, in the nearest folder that exists.
+    fs::path folder = fs::path(output).parent_path();
+    while (!fs::exists(folder)) folder = folder.parent_path();
+    for (const auto& entry : fs::directory_iterator(folder))
+      EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos) << entry.path();
+  }
+  std::string dir;
+};
+
+}  // namespace
+
+TEST_F(DeformCli, SolvesAScenarioAndWritesStatistics) {
+  const CommandResult r = run_primo("deform " + dir + "/ok.json -o " + dir + "/out.obj --stats " + dir + "/s.json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(r.err.empty()) << r.err;
+  const primo::Mesh out = primo::load_mesh(dir + "/out.obj");
+  EXPECT_EQ(out.n_vertices(), 8u);
+  EXPECT_EQ(out.n_faces(), 6u);
+  const auto stats = nlohmann::json::parse(read_file(dir + "/s.json"));
+  for (const char* key : {"energy", "iterations", "converged", "seconds", "faces", "vertices"})
+    EXPECT_TRUE(stats.contains(key)) << key;
+  EXPECT_EQ(stats["faces"], 6);
+  EXPECT_EQ(stats["vertices"], 8);
+  EXPECT_TRUE(stats["converged"].get<bool>());
+  EXPECT_GT(stats["energy"].get<double>(), 0.0);
+}
+
+TEST_F(DeformCli, LocalAndGlobalSolversAgree) {
+  const CommandResult g = run_primo("deform " + dir + "/ok.json -o " + dir + "/g.off --stats " + dir + "/g.json");
+  write_text(dir + "/local.json", scenario_json("cube.obj", R"(, "solver": {"max_iterations": 100000, "tolerance": 1e-13})"));
+  const CommandResult l = run_primo("deform " + dir + "/local.json -o " + dir + "/l.off --solver local --stats " + dir + "/l.json");
+  ASSERT_EQ(g.exit_code, 0) << g.err;
+  ASSERT_EQ(l.exit_code, 0) << l.err;
+  const auto gs = nlohmann::json::parse(read_file(dir + "/g.json"));
+  const auto ls = nlohmann::json::parse(read_file(dir + "/l.json"));
+  EXPECT_EQ(ls["solver"], "local");
+  EXPECT_EQ(gs["solver"], "global");
+  EXPECT_NEAR(ls["energy"].get<double>(), gs["energy"].get<double>(), 1e-6 * gs["energy"].get<double>());
+}
+
+TEST_F(DeformCli, ReproducesTheSpecificationExample) {
+  const std::string scenario = primo::test::shared_path("spec/examples/cylinder-small-bend-45.json");
+  if (!primo::test::exists(scenario)) GTEST_SKIP() << "skipped: " << scenario << " is not present";
+  const CommandResult r = run_primo("deform " + scenario + " -o " + dir + "/c.obj --stats " + dir + "/c.json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto stats = nlohmann::json::parse(read_file(dir + "/c.json"));
+  EXPECT_NEAR(stats["energy"].get<double>(), 0.008368710955476165, 1e-6 * 0.008368710955476165);
+}
+
+TEST_F(DeformCli, MissingScenarioFile) {
+  expect_error("deform " + dir + "/nope.json -o " + dir + "/o.obj", "nope.json", dir + "/o.obj");
+}
+
+TEST_F(DeformCli, MalformedScenario) {
+  write_text(dir + "/bad.json", "{\"format\": \"primo-scenario/1\",\n \"mesh\": \"cube.obj\",,}");
+  expect_error("deform " + dir + "/bad.json -o " + dir + "/o.obj", "bad.json", dir + "/o.obj");
+}
+
+TEST_F(DeformCli, UnknownKeyNamesItsPath) {
+  write_text(dir + "/k.json", scenario_json("cube.obj", R"(, "prisms": {"heigth": 2})"));
+  expect_error("deform " + dir + "/k.json -o " + dir + "/o.obj", "prisms.heigth", dir + "/o.obj");
+}
+
+TEST_F(DeformCli, MissingMeshFile) {
+  write_text(dir + "/m.json", scenario_json("absent.obj"));
+  expect_error("deform " + dir + "/m.json -o " + dir + "/o.obj", "absent.obj", dir + "/o.obj");
+}
+
+TEST_F(DeformCli, NonManifoldMesh) {
+  // A fin: three faces on edge 1-2.
+  write_text(dir + "/fin.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv 0 -1 0\nv 1 1 1\n"
+                               "f 1 2 3\nf 2 1 4\nf 1 2 5\nf 3 2 6\n");
+  write_text(dir + "/fin.json", R"({"format": "primo-scenario/1", "mesh": "fin.obj"})");
+  expect_error("deform " + dir + "/fin.json -o " + dir + "/o.obj", "fin.obj", dir + "/o.obj");
+}
+
+TEST_F(DeformCli, NonFiniteCoordinate) {
+  std::string cube = kCube;
+  cube.replace(cube.find("v 1 1 1"), 7, "v 1 nan 1");
+  write_text(dir + "/nan.obj", cube);
+  write_text(dir + "/nan.json", scenario_json("nan.obj"));
+  expect_error("deform " + dir + "/nan.json -o " + dir + "/o.obj", "nan.obj", dir + "/o.obj");
+}
+
+TEST_F(DeformCli, FaceInTwoHandles) {
+  write_text(dir + "/two.json", R"({"format": "primo-scenario/1", "mesh": "cube.obj",
+    "handles": [{"name": "a", "select": {"faces": [0, 1]}, "fix": "all"},
+                {"name": "b", "select": {"faces": [1]}, "fix": "all"}]})");
+  expect_error("deform " + dir + "/two.json -o " + dir + "/o.obj", "'b'", dir + "/o.obj");
+}
+
+TEST_F(DeformCli, EmptySelectionNamesTheForce) {
+  write_text(dir + "/f.json", scenario_json("cube.obj", R"(, "forces": [{"select": {"sphere": {"center": [9, 9, 9], "radius": 0.1}}, "target_offset": [0, 1, 0], "stiffness": 1}])"));
+  expect_error("deform " + dir + "/f.json -o " + dir + "/o.obj", "forces[0]", dir + "/o.obj");
+}
+
+TEST_F(DeformCli, UnknownOutputFormatFailsBeforeSolving) {
+  expect_error("deform " + dir + "/ok.json -o " + dir + "/o.xyz", "o.xyz", dir + "/o.xyz");
+}
+
+TEST_F(DeformCli, MissingOutputFolder) {
+  expect_error("deform " + dir + "/ok.json -o " + dir + "/no/such/o.obj", "o.obj",
+               dir + "/no/such/o.obj");
+}
+
+TEST_F(DeformCli, FailureKeepsAnExistingOutputFile) {
+  write_text(dir + "/keep.obj", "precious");
+  write_text(dir + "/bad.json", "{");
+  const CommandResult r = run_primo("deform " + dir + "/bad.json -o " + dir + "/keep.obj");
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_EQ(read_file(dir + "/keep.obj"), "precious");
+}
+
+TEST_F(DeformCli, StatisticsFailureRemovesTheMesh) {
+  const CommandResult r = run_primo("deform " + dir + "/ok.json -o " + dir + "/o.obj --stats " + dir + "/missing/s.json");
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_EQ(count_lines(r.err), 1) << r.err;
+  EXPECT_FALSE(fs::exists(dir + "/o.obj"));
+}
