@@ -17,4 +17,14 @@ BodyState local_match(const RigidSystem& system, const std::vector<BodyState>& s
 // One Gauss-Seidel sweep over all bodies in index order.
 void local_sweep(const RigidSystem& system, std::vector<BodyState>& state);
 
+// Bodies grouped so that no two coupled bodies share a group (greedy graph colouring). Bodies
+// of one colour can be matched at the same time: none reads another's state.
+using BodyColoring = std::vector<std::vector<int>>;
+BodyColoring color_bodies(const RigidSystem& system);
+
+// One Gauss-Seidel sweep colour by colour, the bodies of a colour in parallel (OpenMP). Its
+// fixed points are those of the sequential sweep.
+void colored_sweep(const RigidSystem& system, const BodyColoring& coloring,
+                   std::vector<BodyState>& state);
+
 }  // namespace primo

@@ -74,4 +74,39 @@ void local_sweep(const RigidSystem& system, std::vector<BodyState>& state) {
   for (int b = 0; b < system.n_bodies(); ++b) state[b] = local_match(system, state, b);
 }
 
+BodyColoring color_bodies(const RigidSystem& system) {
+  const int n = system.n_bodies();
+  std::vector<int> color(n, -1);
+  std::vector<int> used;  // used[c] == b when colour c is taken by a neighbour of body b
+  int n_colors = 0;
+  for (int b = 0; b < n; ++b) {
+    if (system.bodies[b].kind == BodyKind::Fixed) continue;  // never matched
+    for (int k = system.coupling_begin[b]; k < system.coupling_begin[b + 1]; ++k) {
+      const auto& c = system.couplings[system.body_couplings[k].first];
+      const int other = c.body[1 - system.body_couplings[k].second];
+      if (color[other] >= 0) used[color[other]] = b;
+    }
+    int c = 0;
+    while (c < n_colors && used[c] == b) ++c;
+    if (c == n_colors) {
+      ++n_colors;
+      used.push_back(-1);
+    }
+    color[b] = c;
+  }
+  BodyColoring groups(n_colors);
+  for (int b = 0; b < n; ++b)
+    if (color[b] >= 0) groups[color[b]].push_back(b);
+  return groups;
+}
+
+void colored_sweep(const RigidSystem& system, const BodyColoring& coloring,
+                   std::vector<BodyState>& state) {
+  for (const std::vector<int>& group : coloring) {
+    const int n = int(group.size());
+#pragma omp parallel for schedule(static) if (n > 256)
+    for (int i = 0; i < n; ++i) state[group[i]] = local_match(system, state, group[i]);
+  }
+}
+
 }  // namespace primo

@@ -126,6 +126,10 @@ void set_springs(RigidSystem& sys, const PrismLayer& layer,
     sys.springs.push_back({b, layer.face_centroid[s.face] - sys.bodies[b].rest_center, s.target,
                            s.weight});
   }
+  index_springs(sys);
+}
+
+void index_springs(RigidSystem& sys) {
   const int n_bodies = sys.n_bodies();
   sys.spring_begin.assign(n_bodies + 1, 0);
   for (const auto& s : sys.springs) ++sys.spring_begin[s.body + 1];
