@@ -81,4 +81,7 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(Reference{"cylinder-small-bend-45.json", "cylinder-small-bend-45.expected.obj",
                                 0.008368710955476165},
                       Reference{"hexsphere-orientation.json", "hexsphere-orientation.expected.obj",
-                                0.1816661755903986}));
+                                0.1816661755903986}),
+    [](const ::testing::TestParamInfo<Reference>& info) {
+      return info.index == 0 ? std::string("CylinderSmallBend45") : std::string("HexsphereOrientation");
+    });

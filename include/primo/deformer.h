@@ -9,13 +9,18 @@
 
 #include "primo/constraints.h"
 #include "primo/global_solver.h"
+#include "primo/hierarchical_solver.h"
 #include "primo/mesh.h"
 #include "primo/prism_layer.h"
 #include "primo/rigid_system.h"
 
 namespace primo {
 
-enum class SolveMethod { Global, Local };
+enum class SolveMethod {
+  Global,        // Newton matching on all prisms (paper Sect. 4.2)
+  Local,         // Gauss-Seidel sweeps of Horn matches (Sect. 4.1)
+  Hierarchical,  // coarse Newton + sweeps per level, one cycle per iteration (Sect. 4.3)
+};
 
 struct SolveOptions {
   SolveMethod method = SolveMethod::Global;
@@ -24,6 +29,9 @@ struct SolveOptions {
   // Global only: switch to exact-Hessian Newton steps once Gauss-Newton takes full steps
   // that lower the energy by less than this fraction (0 disables exact steps).
   double exact_hessian_below = 1e-1;
+  // Hierarchical only. The hierarchy is built on the first hierarchical solve and kept until
+  // the handle set changes (a new Deformer).
+  HierarchicalOptions hierarchical;
 };
 
 struct SolveReport {
@@ -61,6 +69,8 @@ class Deformer {
   void set_force_offset(int force, const Vec3& target_offset);
 
   // Runs iterations from the current state until the stopping rule of the scenario format.
+  // When nothing changed since a solve with the same method converged to the same or a
+  // tighter tolerance, returns at once (0 iterations).
   SolveReport solve(const SolveOptions& options);
 
   double energy() const { return system_.energy(state_); }
@@ -75,6 +85,8 @@ class Deformer {
   std::vector<RigidTransform> face_motions() const;
   void set_face_motions(const std::vector<RigidTransform>& motions);
   const std::vector<BodyState>& body_states() const { return state_; }
+  const GlobalSolver* global_solver() const { return global_.get(); }
+  const HierarchicalSolver* hierarchical_solver() const { return hierarchical_.get(); }
 
   // Every free prism back to rest, every handle to its current full transform.
   void reset();
@@ -90,6 +102,11 @@ class Deformer {
   RigidSystem system_;
   std::vector<BodyState> state_;
   std::unique_ptr<GlobalSolver> global_;  // made on first use: symbolic analysis once
+  std::unique_ptr<HierarchicalSolver> hierarchical_;  // made on first use
+  // The last solve converged with this method and tolerance, and nothing changed since.
+  bool settled_ = false;
+  SolveMethod settled_method_ = SolveMethod::Global;
+  double settled_tolerance_ = 0.0;
 };
 
 }  // namespace primo

@@ -17,14 +17,18 @@ BodyState local_match(const RigidSystem& system, const std::vector<BodyState>& s
 // One Gauss-Seidel sweep over all bodies in index order.
 void local_sweep(const RigidSystem& system, std::vector<BodyState>& state);
 
-// Bodies grouped so that no two coupled bodies share a group (greedy graph colouring). Bodies
-// of one colour can be matched at the same time: none reads another's state.
-using BodyColoring = std::vector<std::vector<int>>;
-BodyColoring color_bodies(const RigidSystem& system);
-
-// One Gauss-Seidel sweep colour by colour, the bodies of a colour in parallel (OpenMP). Its
-// fixed points are those of the sequential sweep.
-void colored_sweep(const RigidSystem& system, const BodyColoring& coloring,
+// A Gauss-Seidel sweep split over two threads: the bodies are cut in two spatial halves at
+// the median of their rest centres along the longest axis; each thread matches the interior
+// bodies of its half (whose neighbours all lie in that half, so the threads never touch each
+// other's state), then the bodies on the cut are matched serially. It is a Gauss-Seidel
+// ordering, so its fixed points are those of `local_sweep`; it needs one join per sweep and
+// no spinning barrier, which matters on two cores shared with rendering.
+struct SweepPlan {
+  std::vector<int> half[2];
+  std::vector<int> cut;
+};
+SweepPlan plan_sweep(const RigidSystem& system, bool parallel = true);
+void planned_sweep(const RigidSystem& system, const SweepPlan& plan,
                    std::vector<BodyState>& state);
 
 }  // namespace primo

@@ -54,7 +54,7 @@ struct ForceSpec {
   double stiffness = 0.0;
 };
 
-enum class SolverMethod { Default, Global, Local };
+enum class SolverMethod { Default, Global, Local, Hierarchical };
 
 struct SolverSpec {
   int max_iterations = 100;

@@ -23,14 +23,33 @@ struct DeformArguments {
   std::string solver;
 };
 
-SolveMethod choose_method(const std::string& flag, SolverMethod from_scenario) {
+// Above this many faces one global Newton iteration on every prism costs seconds and
+// gigabytes (its factorization grows superlinearly), and the hierarchical solver is the
+// better choice; below it global Newton converges exactly in a few iterations
+// (docs/engine.md has the measurements).
+constexpr size_t kHierarchicalFromFaces = 20000;
+
+SolveMethod choose_method(const std::string& flag, SolverMethod from_scenario, size_t faces) {
   if (flag == "local") return SolveMethod::Local;
   if (flag == "global") return SolveMethod::Global;
-  if (from_scenario == SolverMethod::Local) return SolveMethod::Local;
-  return SolveMethod::Global;  // the best available
+  if (flag == "hierarchical") return SolveMethod::Hierarchical;
+  switch (from_scenario) {
+    case SolverMethod::Local: return SolveMethod::Local;
+    case SolverMethod::Global: return SolveMethod::Global;
+    case SolverMethod::Hierarchical: return SolveMethod::Hierarchical;
+    case SolverMethod::Default: break;
+  }
+  return faces > kHierarchicalFromFaces ? SolveMethod::Hierarchical : SolveMethod::Global;
 }
 
-const char* method_name(SolveMethod m) { return m == SolveMethod::Local ? "local" : "global"; }
+const char* method_name(SolveMethod m) {
+  switch (m) {
+    case SolveMethod::Local: return "local";
+    case SolveMethod::Hierarchical: return "hierarchical";
+    case SolveMethod::Global: break;
+  }
+  return "global";
+}
 
 int run_deform(const DeformArguments& args) {
   check_mesh_output_path(args.output);
@@ -40,7 +59,7 @@ int run_deform(const DeformArguments& args) {
 
   Deformer deformer(mesh, resolved.prisms, resolved.handles, resolved.forces);
   SolveOptions options;
-  options.method = choose_method(args.solver, resolved.solver.method);
+  options.method = choose_method(args.solver, resolved.solver.method, mesh.n_faces());
   options.max_iterations = resolved.solver.max_iterations;
   options.tolerance = resolved.solver.tolerance;
   const SolveReport report = deformer.solve(options);
@@ -95,8 +114,10 @@ Command register_deform(CLI::App& app) {
   cmd->add_option("scenario", args->scenario, "Scenario file (primo-scenario/1 JSON)")->required();
   cmd->add_option("-o,--output", args->output, "Deformed mesh (.obj .off .ply .stl .om)")->required();
   cmd->add_option("--stats", args->stats, "Write solve statistics as JSON");
-  cmd->add_option("--solver", args->solver, "Solver: global (default) or local")
-      ->check(CLI::IsMember({"global", "local"}));
+  cmd->add_option("--solver", args->solver,
+                  "global, local or hierarchical (default: solver.method of the scenario, else "
+                  "global up to 20,000 faces and hierarchical above)")
+      ->check(CLI::IsMember({"global", "local", "hierarchical"}));
   return {cmd, [args] { return run_deform(*args); }};
 }
 

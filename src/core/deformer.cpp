@@ -74,8 +74,12 @@ Deformer::Deformer(Deformer&& other) noexcept
       handles_(std::move(other.handles_)),
       forces_(std::move(other.forces_)),
       system_(std::move(other.system_)),
-      state_(std::move(other.state_)) {
+      state_(std::move(other.state_)),
+      settled_(other.settled_),
+      settled_method_(other.settled_method_),
+      settled_tolerance_(other.settled_tolerance_) {
   other.global_.reset();
+  other.hierarchical_.reset();
 }
 
 Deformer& Deformer::operator=(Deformer&& other) noexcept {
@@ -85,8 +89,13 @@ Deformer& Deformer::operator=(Deformer&& other) noexcept {
   forces_ = std::move(other.forces_);
   system_ = std::move(other.system_);
   state_ = std::move(other.state_);
+  settled_ = other.settled_;
+  settled_method_ = other.settled_method_;
+  settled_tolerance_ = other.settled_tolerance_;
   global_.reset();
+  hierarchical_.reset();
   other.global_.reset();
+  other.hierarchical_.reset();
   return *this;
 }
 
@@ -109,6 +118,7 @@ BodyState Deformer::handle_state(int handle) const {
 }
 
 void Deformer::reset() {
+  settled_ = false;
   state_.resize(system_.n_bodies());
   for (int b = 0; b < system_.n_bodies(); ++b)
     state_[b] = b < int(handles_.size()) ? handle_state(b)
@@ -118,6 +128,7 @@ void Deformer::reset() {
 void Deformer::set_handle_transform(int handle, const RigidTransform& transform) {
   if (handle < 0 || handle >= int(handles_.size())) throw Error("no such handle");
   handles_[handle].transform = transform;
+  settled_ = false;
   const BodyState target = handle_state(handle);
   BodyState& s = state_[handle];
   switch (handles_[handle].fix) {
@@ -130,6 +141,7 @@ void Deformer::set_handle_transform(int handle, const RigidTransform& transform)
 void Deformer::set_force_offset(int force, const Vec3& target_offset) {
   if (force < 0 || force >= int(forces_.size())) throw Error("no such force");
   forces_[force].target_offset = target_offset;
+  settled_ = false;
   rebuild_springs();
 }
 
@@ -140,6 +152,12 @@ SolveReport Deformer::solve(const SolveOptions& options) {
   const double energy_floor = 1e-14 * diagonal * diagonal;
   double e = energy();
   report.initial_energy = e;
+  report.energy = e;
+  if (settled_ && settled_method_ == options.method && options.tolerance >= settled_tolerance_) {
+    report.converged = true;
+    report.stop_reason = "already converged";
+    return report;
+  }
   report.stop_reason = "max_iterations";
   bool exact = false;
 
@@ -164,6 +182,10 @@ SolveReport Deformer::solve(const SolveOptions& options) {
       if (step.exact_hessian) ++report.exact_newton_steps;
       exact = options.exact_hessian_below > 0 && step.step_scale == 1.0 &&
               (before - after) < options.exact_hessian_below * before;
+    } else if (options.method == SolveMethod::Hierarchical) {
+      if (!hierarchical_)
+        hierarchical_ = std::make_unique<HierarchicalSolver>(system_, options.hierarchical);
+      after = hierarchical_->cycle(state_);
     } else {
       local_sweep(system_, state_);
       after = energy();
@@ -182,6 +204,9 @@ SolveReport Deformer::solve(const SolveOptions& options) {
     report.stop_reason = "energy floor";
   }
   report.energy = e;
+  settled_ = report.converged;
+  settled_method_ = options.method;
+  settled_tolerance_ = options.tolerance;
   report.seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return report;
@@ -224,6 +249,7 @@ std::vector<RigidTransform> Deformer::face_motions() const {
 
 void Deformer::set_face_motions(const std::vector<RigidTransform>& motions) {
   if (int(motions.size()) != layer_.n_faces()) throw Error("one motion per face is needed");
+  settled_ = false;
   for (int b = int(handles_.size()); b < system_.n_bodies(); ++b) {
     const RigidSystem::Body& body = system_.bodies[b];
     const RigidTransform& m = motions[body.faces.front()];

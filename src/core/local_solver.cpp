@@ -2,6 +2,10 @@
 
 #include "primo/horn.h"
 
+#include <algorithm>
+#include <limits>
+#include <thread>
+
 namespace primo {
 
 BodyState local_match(const RigidSystem& system, const std::vector<BodyState>& state, int body) {
@@ -74,39 +78,56 @@ void local_sweep(const RigidSystem& system, std::vector<BodyState>& state) {
   for (int b = 0; b < system.n_bodies(); ++b) state[b] = local_match(system, state, b);
 }
 
-BodyColoring color_bodies(const RigidSystem& system) {
+SweepPlan plan_sweep(const RigidSystem& system, bool parallel) {
+  SweepPlan plan;
   const int n = system.n_bodies();
-  std::vector<int> color(n, -1);
-  std::vector<int> used;  // used[c] == b when colour c is taken by a neighbour of body b
-  int n_colors = 0;
-  for (int b = 0; b < n; ++b) {
-    if (system.bodies[b].kind == BodyKind::Fixed) continue;  // never matched
-    for (int k = system.coupling_begin[b]; k < system.coupling_begin[b + 1]; ++k) {
+  std::vector<int> movable;
+  for (int b = 0; b < n; ++b)
+    if (system.bodies[b].kind != BodyKind::Fixed) movable.push_back(b);
+  // Below this size a thread costs more than it saves.
+  if (!parallel || movable.size() < 4000) {
+    plan.half[0] = movable;
+    return plan;
+  }
+  Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  for (int b : movable) {
+    lo = lo.cwiseMin(system.bodies[b].rest_center);
+    hi = hi.cwiseMax(system.bodies[b].rest_center);
+  }
+  int axis = 0;
+  (hi - lo).maxCoeff(&axis);
+  std::vector<int> sorted = movable;
+  const size_t middle = sorted.size() / 2;
+  std::nth_element(sorted.begin(), sorted.begin() + middle, sorted.end(), [&](int a, int b) {
+    return system.bodies[a].rest_center[axis] < system.bodies[b].rest_center[axis];
+  });
+  std::vector<int> side(n, -1);
+  for (size_t i = 0; i < sorted.size(); ++i) side[sorted[i]] = i < middle ? 0 : 1;
+  for (int b : movable) {
+    bool interior = true;
+    for (int k = system.coupling_begin[b]; k < system.coupling_begin[b + 1] && interior; ++k) {
       const auto& c = system.couplings[system.body_couplings[k].first];
       const int other = c.body[1 - system.body_couplings[k].second];
-      if (color[other] >= 0) used[color[other]] = b;
+      interior = side[other] == side[b] || side[other] < 0;  // fixed neighbours never change
     }
-    int c = 0;
-    while (c < n_colors && used[c] == b) ++c;
-    if (c == n_colors) {
-      ++n_colors;
-      used.push_back(-1);
-    }
-    color[b] = c;
+    (interior ? plan.half[side[b]] : plan.cut).push_back(b);
   }
-  BodyColoring groups(n_colors);
-  for (int b = 0; b < n; ++b)
-    if (color[b] >= 0) groups[color[b]].push_back(b);
-  return groups;
+  return plan;
 }
 
-void colored_sweep(const RigidSystem& system, const BodyColoring& coloring,
+void planned_sweep(const RigidSystem& system, const SweepPlan& plan,
                    std::vector<BodyState>& state) {
-  for (const std::vector<int>& group : coloring) {
-    const int n = int(group.size());
-#pragma omp parallel for schedule(static) if (n > 256)
-    for (int i = 0; i < n; ++i) state[group[i]] = local_match(system, state, group[i]);
+  auto sweep = [&](const std::vector<int>& bodies) {
+    for (int b : bodies) state[b] = local_match(system, state, b);
+  };
+  if (plan.half[1].empty()) {
+    sweep(plan.half[0]);
+  } else {
+    std::thread other([&] { sweep(plan.half[1]); });
+    sweep(plan.half[0]);
+    other.join();
   }
+  sweep(plan.cut);
 }
 
 }  // namespace primo

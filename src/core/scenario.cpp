@@ -410,8 +410,11 @@ void read_solver(const ScenarioReader& in, const Json& value, SolverSpec& solver
       solver.method = SolverMethod::Global;
     else if (method == "local")
       solver.method = SolverMethod::Local;
+    else if (method == "hierarchical")
+      solver.method = SolverMethod::Hierarchical;
     else
-      in.fail("solver.method", "expected \"global\" or \"local\", got \"" + method + "\"");
+      in.fail("solver.method",
+              "expected \"global\", \"local\" or \"hierarchical\", got \"" + method + "\"");
   }
 }
 
@@ -575,6 +578,7 @@ std::string scenario_to_json(const Scenario& scenario) {
   // "Default" (the best available method) is expressed by leaving the key out.
   if (scenario.solver.method == SolverMethod::Global) solver["method"] = "global";
   if (scenario.solver.method == SolverMethod::Local) solver["method"] = "local";
+  if (scenario.solver.method == SolverMethod::Hierarchical) solver["method"] = "hierarchical";
   root["solver"] = std::move(solver);
 
   return root.dump(2) + "\n";

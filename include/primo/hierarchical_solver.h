@@ -1,0 +1,68 @@
+#pragma once
+// Hierarchical shape matching (paper Sect. 4.3), as a multilevel subspace correction: every
+// coarse level moves whole clusters of fine prisms rigidly on top of the current fine state.
+//
+// One cycle: for the coarsest level down to the finest, restrict (the fine joints crossing
+// cluster borders and the springs, taken from the current fine state, become the level's
+// couplings), then optimize the clusters' corrections (global Newton matching on the coarsest
+// level, local sweeps on the others), then prolong (apply each cluster's correction to
+// its fine prisms). Finally sweep the fine level. Every step lowers the true energy, and
+// repeating cycles converges to the same minimum as the flat solvers; the coarse Newton step
+// carries the smooth, global part of a deformation at the cost of a small system. Restriction
+// is done once per level and cycle, so a coarse Newton iteration costs what the number of
+// clusters (and their borders) requires. The coarse sparsity pattern, hence the symbolic
+// factorization, is fixed for the life of the solver (one handle set).
+
+#include <memory>
+#include <vector>
+
+#include "primo/cluster_hierarchy.h"
+#include "primo/global_solver.h"
+#include "primo/local_solver.h"
+#include "primo/rigid_system.h"
+
+namespace primo {
+
+struct HierarchicalOptions {
+  HierarchyOptions hierarchy;
+  int sweeps_per_level = 2;      // local sweeps on the fine level (the paper uses 2)
+  int intermediate_sweeps = 8;   // local sweeps on each level between fine and coarsest (cheap)
+  int coarse_iterations = 1;     // global Newton iterations on the coarsest level per cycle
+  double exact_hessian_below = 1e-1;  // as SolveOptions::exact_hessian_below, for the coarsest level
+};
+
+struct HierarchicalTimings {
+  double restrict_prolong = 0.0;
+  double coarse = 0.0;
+  double sweeps = 0.0;
+  int cycles = 0;
+};
+
+class HierarchicalSolver {
+ public:
+  HierarchicalSolver(const RigidSystem& fine, const HierarchicalOptions& options = {});
+  ~HierarchicalSolver();
+
+  // One cycle from `fine_state` (updated in place). Returns the fine energy after it.
+  double cycle(std::vector<BodyState>& fine_state);
+
+  int levels() const { return int(levels_.size()) + 1; }  // including the fine level
+  int bodies(int level) const;  // level 0 = fine
+  const HierarchicalTimings& timings() const { return timings_; }
+  const GlobalSolver* coarse_solver() const { return coarse_solver_.get(); }
+
+ private:
+  struct Level;
+  void restrict_level(Level& level, const std::vector<BodyState>& fine_state);
+  void prolong_level(const Level& level, std::vector<BodyState>& fine_state) const;
+
+  const RigidSystem& fine_;
+  HierarchicalOptions options_;
+  std::vector<std::unique_ptr<Level>> levels_;  // finest coarse level first
+  std::unique_ptr<GlobalSolver> coarse_solver_;
+  SweepPlan fine_plan_;
+  bool coarse_exact_ = false;
+  HierarchicalTimings timings_;
+};
+
+}  // namespace primo

@@ -1,0 +1,118 @@
+#include "primo/cluster_hierarchy.h"
+
+#include <algorithm>
+#include <limits>
+
+namespace primo {
+
+std::vector<int> aggregate_nodes(const std::vector<std::vector<int>>& adjacency,
+                                 const std::vector<Vec3>& position,
+                                 const std::vector<bool>& locked, int target_size) {
+  const int n = int(adjacency.size());
+  std::vector<int> aggregate(n, -1);
+  std::vector<int> size;
+  std::vector<int> members, frontier;
+  for (int seed = 0; seed < n; ++seed) {
+    if (aggregate[seed] >= 0) continue;
+    const int id = int(size.size());
+    aggregate[seed] = id;
+    size.push_back(1);
+    if (locked[seed]) continue;
+    members.assign(1, seed);
+    while (size[id] < target_size) {
+      // The unassigned free neighbour of the aggregate closest to its seed.
+      int best = -1;
+      double best_distance = std::numeric_limits<double>::infinity();
+      for (int m : members)
+        for (int nb : adjacency[m]) {
+          if (aggregate[nb] >= 0 || locked[nb]) continue;
+          const double d = (position[nb] - position[seed]).squaredNorm();
+          if (d < best_distance) best_distance = d, best = nb;
+        }
+      if (best < 0) break;
+      aggregate[best] = id;
+      members.push_back(best);
+      ++size[id];
+    }
+  }
+
+  // Merge small free aggregates into their smallest free neighbouring aggregate.
+  std::vector<int> merged_into(size.size());
+  for (size_t a = 0; a < size.size(); ++a) merged_into[a] = int(a);
+  std::vector<std::vector<int>> nodes_of(size.size());
+  for (int v = 0; v < n; ++v) nodes_of[aggregate[v]].push_back(v);
+  for (size_t a = 0; a < size.size(); ++a) {
+    if (2 * size[a] >= target_size || locked[nodes_of[a].front()]) continue;
+    int best = -1;
+    for (int v : nodes_of[a])
+      for (int nb : adjacency[v]) {
+        int other = aggregate[nb];
+        while (merged_into[other] != other) other = merged_into[other];
+        if (other == int(a) || locked[nodes_of[other].front()]) continue;
+        if (best < 0 || size[other] < size[best]) best = other;
+      }
+    if (best < 0) continue;
+    merged_into[a] = best;
+    size[best] += size[a];
+  }
+  // Renumber the surviving aggregates densely.
+  std::vector<int> final_id(size.size(), -1);
+  int count = 0;
+  for (size_t a = 0; a < size.size(); ++a)
+    if (merged_into[a] == int(a)) final_id[a] = count++;
+  for (int v = 0; v < n; ++v) {
+    int a = aggregate[v];
+    while (merged_into[a] != a) a = merged_into[a];
+    aggregate[v] = final_id[a];
+  }
+  return aggregate;
+}
+
+ClusterHierarchy build_cluster_hierarchy(const RigidSystem& fine, const HierarchyOptions& options) {
+  ClusterHierarchy h;
+  const int n_fine = fine.n_bodies();
+
+  // Level graph: nodes with positions, adjacency, locks, and each fine body's node.
+  std::vector<int> node_of(n_fine);
+  for (int b = 0; b < n_fine; ++b) node_of[b] = b;
+  int n_nodes = n_fine;
+  std::vector<bool> locked(n_fine);
+  for (int b = 0; b < n_fine; ++b) locked[b] = fine.bodies[b].kind != BodyKind::Free;
+
+  while (h.coarse_levels() < options.max_levels && n_nodes > options.coarsest_max_bodies) {
+    std::vector<Vec3> position(n_nodes, Vec3::Zero());
+    std::vector<double> weight(n_nodes, 0.0);
+    for (int b = 0; b < n_fine; ++b) {
+      const double w = double(fine.bodies[b].faces.size());
+      position[node_of[b]] += w * fine.bodies[b].rest_center;
+      weight[node_of[b]] += w;
+    }
+    for (int v = 0; v < n_nodes; ++v) position[v] /= weight[v];
+    std::vector<std::vector<int>> adjacency(n_nodes);
+    for (const auto& c : fine.couplings) {
+      const int a = node_of[c.body[0]], b = node_of[c.body[1]];
+      if (a == b) continue;
+      adjacency[a].push_back(b);
+      adjacency[b].push_back(a);
+    }
+    for (auto& list : adjacency) {
+      std::sort(list.begin(), list.end());
+      list.erase(std::unique(list.begin(), list.end()), list.end());
+    }
+    std::vector<bool> node_locked(n_nodes, false);
+    for (int b = 0; b < n_fine; ++b)
+      if (locked[b]) node_locked[node_of[b]] = true;
+
+    const std::vector<int> aggregate =
+        aggregate_nodes(adjacency, position, node_locked, options.cluster_size);
+    const int n_clusters = aggregate.empty() ? 0 : *std::max_element(aggregate.begin(), aggregate.end()) + 1;
+    if (n_clusters * 3 > n_nodes * 2) break;  // cannot coarsen much further (handles, islands)
+    for (int b = 0; b < n_fine; ++b) node_of[b] = aggregate[node_of[b]];
+    h.cluster_of.push_back(node_of);
+    h.cluster_count.push_back(n_clusters);
+    n_nodes = n_clusters;
+  }
+  return h;
+}
+
+}  // namespace primo

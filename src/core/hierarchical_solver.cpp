@@ -1,0 +1,213 @@
+#include "primo/hierarchical_solver.h"
+
+#include <chrono>
+
+namespace primo {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
+
+}  // namespace
+
+struct HierarchicalSolver::Level {
+  RigidSystem system;              // couplings/springs rewritten by every restriction
+  std::vector<int> cluster_of;     // fine body -> cluster
+  std::vector<int> coupling_fine;  // level coupling -> fine coupling (same side order)
+  std::vector<double> fine_weight; // fine body weight in its cluster's centre
+  std::vector<int> representative; // cluster -> a fine body whose rotation orients the metric
+  std::vector<Vec3> rest_metric_mean;
+  std::vector<Mat3> rest_metric_centered, rest_metric_pinned;
+  std::vector<BodyState> correction;
+  SweepPlan plan;
+};
+
+HierarchicalSolver::HierarchicalSolver(const RigidSystem& fine, const HierarchicalOptions& options)
+    : fine_(fine), options_(options) {
+  const ClusterHierarchy hierarchy = build_cluster_hierarchy(fine, options.hierarchy);
+  const int n_faces = int(fine.face_body.size());
+
+  // The fine couplings in joint order: level couplings come from the same joints, in the same
+  // order, so they can be matched by walking both lists.
+  for (int l = 0; l < hierarchy.coarse_levels(); ++l) {
+    auto level = std::make_unique<Level>();
+    level->cluster_of = hierarchy.cluster_of[l];
+    const int n_clusters = hierarchy.cluster_count[l];
+    std::vector<int> face_cluster(n_faces);
+    for (int f = 0; f < n_faces; ++f) face_cluster[f] = level->cluster_of[fine.face_body[f]];
+    std::vector<BodyKind> kinds(n_clusters, BodyKind::Free);
+    level->representative.assign(n_clusters, -1);
+    for (int b = 0; b < fine.n_bodies(); ++b) {
+      const int c = level->cluster_of[b];
+      if (fine.bodies[b].kind != BodyKind::Free) kinds[c] = fine.bodies[b].kind;  // alone
+      if (level->representative[c] < 0 ||
+          fine.bodies[b].faces.size() > fine.bodies[level->representative[c]].faces.size())
+        level->representative[c] = b;
+    }
+    level->fine_weight.resize(fine.n_bodies());
+    for (int b = 0; b < fine.n_bodies(); ++b) level->fine_weight[b] = double(fine.bodies[b].faces.size());
+    // Couplings: fine couplings whose bodies are in different clusters.
+    RigidSystem& sys = level->system;
+    sys.face_body = face_cluster;
+    sys.bodies.resize(n_clusters);
+    for (int b = 0; b < fine.n_bodies(); ++b) {
+      RigidSystem::Body& cluster = sys.bodies[level->cluster_of[b]];
+      cluster.faces.insert(cluster.faces.end(), fine.bodies[b].faces.begin(), fine.bodies[b].faces.end());
+    }
+    for (int c = 0; c < n_clusters; ++c) sys.bodies[c].kind = kinds[c];
+    for (int ci = 0; ci < int(fine.couplings.size()); ++ci) {
+      const auto& fc = fine.couplings[ci];
+      const int a = level->cluster_of[fc.body[0]], b = level->cluster_of[fc.body[1]];
+      if (a == b) continue;
+      RigidSystem::Coupling c = fc;
+      c.body[0] = a;
+      c.body[1] = b;
+      sys.couplings.push_back(c);
+      level->coupling_fine.push_back(ci);
+    }
+    // Adjacency (CSR), as build_rigid_system makes it.
+    sys.coupling_begin.assign(n_clusters + 1, 0);
+    for (const auto& c : sys.couplings) {
+      ++sys.coupling_begin[c.body[0] + 1];
+      ++sys.coupling_begin[c.body[1] + 1];
+    }
+    for (int c = 0; c < n_clusters; ++c) sys.coupling_begin[c + 1] += sys.coupling_begin[c];
+    sys.body_couplings.resize(sys.coupling_begin[n_clusters]);
+    std::vector<int> fill(sys.coupling_begin.begin(), sys.coupling_begin.end() - 1);
+    for (int i = 0; i < int(sys.couplings.size()); ++i)
+      for (int s = 0; s < 2; ++s) sys.body_couplings[fill[sys.couplings[i].body[s]]++] = {i, s};
+
+    // Rest metrics of the clusters (their prisms' sides about the cluster's rest centre),
+    // combined from the fine bodies' metrics by the parallel-axis rule.
+    level->rest_metric_mean.assign(n_clusters, Vec3::Zero());
+    level->rest_metric_centered.assign(n_clusters, Mat3::Zero());
+    level->rest_metric_pinned.assign(n_clusters, Mat3::Zero());
+    std::vector<double> weight(n_clusters, 0.0);
+    std::vector<Vec3> rest_center(n_clusters, Vec3::Zero());
+    for (int b = 0; b < fine.n_bodies(); ++b) {
+      const int c = level->cluster_of[b];
+      rest_center[c] += level->fine_weight[b] * fine.bodies[b].rest_center;
+      weight[c] += level->fine_weight[b];
+    }
+    for (int c = 0; c < n_clusters; ++c) rest_center[c] /= weight[c];
+    std::vector<double> metric_weight(n_clusters, 0.0);
+    for (int b = 0; b < fine.n_bodies(); ++b) {
+      const RigidSystem::Body& body = fine.bodies[b];
+      const int c = level->cluster_of[b];
+      const Vec3 offset = body.rest_center - rest_center[c];
+      // metric_pinned of the fine body is about its own rest_center; shift to the cluster's.
+      const Vec3 first = body.metric_weight * body.metric_mean;
+      level->rest_metric_pinned[c] += body.metric_pinned + first * offset.transpose() +
+                                      offset * first.transpose() +
+                                      body.metric_weight * offset * offset.transpose();
+      level->rest_metric_mean[c] += first + body.metric_weight * offset;
+      metric_weight[c] += body.metric_weight;
+    }
+    for (int c = 0; c < n_clusters; ++c) {
+      level->rest_metric_mean[c] /= metric_weight[c];
+      const Vec3& m = level->rest_metric_mean[c];
+      level->rest_metric_centered[c] =
+          level->rest_metric_pinned[c] - metric_weight[c] * m * m.transpose();
+      sys.bodies[c].metric_weight = metric_weight[c];
+    }
+    level->plan = plan_sweep(sys);
+    levels_.push_back(std::move(level));
+  }
+  fine_plan_ = plan_sweep(fine);
+  if (!levels_.empty()) coarse_solver_ = std::make_unique<GlobalSolver>(levels_.back()->system);
+}
+
+HierarchicalSolver::~HierarchicalSolver() = default;
+
+int HierarchicalSolver::bodies(int level) const {
+  return level == 0 ? fine_.n_bodies() : levels_[level - 1]->system.n_bodies();
+}
+
+void HierarchicalSolver::restrict_level(Level& level, const std::vector<BodyState>& fine_state) {
+  RigidSystem& sys = level.system;
+  const int n = sys.n_bodies();
+  std::vector<Vec3> center(n, Vec3::Zero());
+  std::vector<double> weight(n, 0.0);
+  for (int b = 0; b < fine_.n_bodies(); ++b) {
+    center[level.cluster_of[b]] += level.fine_weight[b] * fine_state[b].position;
+    weight[level.cluster_of[b]] += level.fine_weight[b];
+  }
+  level.correction.resize(n);
+  for (int c = 0; c < n; ++c) {
+    RigidSystem::Body& body = sys.bodies[c];
+    body.rest_center = center[c] / weight[c];
+    // The cluster's prisms have moved; orient its rest metric by one of them.
+    const Mat3& R = fine_state[level.representative[c]].rotation;
+    body.metric_mean = R * level.rest_metric_mean[c];
+    body.metric_centered = R * level.rest_metric_centered[c] * R.transpose();
+    body.metric_pinned = R * level.rest_metric_pinned[c] * R.transpose();
+    level.correction[c] = {Mat3::Identity(), body.rest_center};
+  }
+  for (size_t k = 0; k < sys.couplings.size(); ++k) {
+    const RigidSystem::Coupling& fc = fine_.couplings[level.coupling_fine[k]];
+    RigidSystem::Coupling& c = sys.couplings[k];
+    for (int s = 0; s < 2; ++s) {
+      const BodyState& st = fine_state[fc.body[s]];
+      c.local[s].mean = st.rotation * fc.local[s].mean + st.position - sys.bodies[c.body[s]].rest_center;
+      c.local[s].du = st.rotation * fc.local[s].du;
+      c.local[s].dv = st.rotation * fc.local[s].dv;
+      c.local[s].duv = st.rotation * fc.local[s].duv;
+    }
+  }
+  sys.springs.resize(fine_.springs.size());
+  for (size_t k = 0; k < fine_.springs.size(); ++k) {
+    const RigidSystem::Spring& fs = fine_.springs[k];
+    const int c = level.cluster_of[fs.body];
+    sys.springs[k] = {c, world_point(fine_state[fs.body], fs.local) - sys.bodies[c].rest_center,
+                      fs.target, fs.weight};
+  }
+  index_springs(sys);
+}
+
+void HierarchicalSolver::prolong_level(const Level& level, std::vector<BodyState>& fine_state) const {
+  const RigidSystem& sys = level.system;
+  for (int b = 0; b < fine_.n_bodies(); ++b) {
+    const int c = level.cluster_of[b];
+    const BodyState& corr = level.correction[c];
+    BodyState& s = fine_state[b];
+    s.position = corr.rotation * (s.position - sys.bodies[c].rest_center) + corr.position;
+    s.rotation = corr.rotation * s.rotation;
+  }
+}
+
+double HierarchicalSolver::cycle(std::vector<BodyState>& fine_state) {
+  ++timings_.cycles;
+  for (int l = int(levels_.size()) - 1; l >= 0; --l) {
+    Level& level = *levels_[l];
+    auto t = Clock::now();
+    restrict_level(level, fine_state);
+    timings_.restrict_prolong += seconds_since(t);
+    t = Clock::now();
+    if (l == int(levels_.size()) - 1) {
+      for (int it = 0; it < options_.coarse_iterations; ++it) {
+        const GlobalStep step = coarse_solver_->iterate(level.correction, coarse_exact_);
+        coarse_exact_ = options_.exact_hessian_below > 0 && step.decreased &&
+                        step.step_scale == 1.0 &&
+                        step.energy_before - step.energy_after <
+                            options_.exact_hessian_below * step.energy_before;
+        if (!step.decreased) break;
+      }
+      timings_.coarse += seconds_since(t);
+    } else {
+      for (int k = 0; k < options_.intermediate_sweeps; ++k)
+        planned_sweep(level.system, level.plan, level.correction);
+      timings_.sweeps += seconds_since(t);
+    }
+    t = Clock::now();
+    prolong_level(level, fine_state);
+    timings_.restrict_prolong += seconds_since(t);
+  }
+  const auto t = Clock::now();
+  for (int k = 0; k < options_.sweeps_per_level; ++k) planned_sweep(fine_, fine_plan_, fine_state);
+  timings_.sweeps += seconds_since(t);
+  return fine_.energy(fine_state);
+}
+
+}  // namespace primo

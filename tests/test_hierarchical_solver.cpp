@@ -1,0 +1,245 @@
+// The hierarchical solver: its clusters, and its results against the flat global solver.
+
+#include "primo/hierarchical_solver.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <iostream>
+#include <random>
+#include <set>
+
+#include "primo/deformer.h"
+#include "primo/geometry.h"
+#include "primo/mesh_generators.h"
+#include "primo/mesh_io.h"
+#include "test_support.h"
+
+using namespace primo;
+using primo::test::faces_where;
+
+namespace {
+
+struct PosedMesh {
+  Mesh mesh;
+  std::vector<Handle> handles;
+};
+
+// A 2,400-quad cylinder bent 90 degrees between its fixed bottom band and its top band.
+PosedMesh bent_cylinder() {
+  PosedMesh s;
+  const double length = 2.0;
+  s.mesh = make_cylinder(0.25, length, 40, 60, FaceShape::Quads);
+  const double band = length / 60;
+  Handle bottom{"bottom", faces_where(s.mesh, [&](const Vec3& p) { return p.y() < band; }), Fix::All, {}};
+  Handle top{"top", faces_where(s.mesh, [&](const Vec3& p) { return p.y() > length - band; }), Fix::All, {}};
+  const double rho = length / (M_PI / 2);
+  top.transform = make_rigid_transform(Vec3(rho, rho - length, 0), Vec3::UnitZ(), -90.0, Vec3(0, length, 0));
+  s.handles = {bottom, top};
+  return s;
+}
+
+// Spot (assets/meshes): feet fixed, head moved by a position-only handle.
+PosedMesh posed_spot() {
+  PosedMesh s;
+  s.mesh = load_mesh(test::source_path("assets/meshes/spot_quadrangulated.obj"));
+  Handle feet{"feet", faces_where(s.mesh, [](const Vec3& p) { return p.y() < -0.6; }), Fix::All, {}};
+  Handle head{"head", faces_where(s.mesh, [](const Vec3& p) { return (p - Vec3(0, 0.2, 0.95)).norm() < 0.2; }),
+              Fix::Position, {}};
+  head.transform.translation = Vec3(0.25, 0.2, -0.05);
+  s.handles = {feet, head};
+  return s;
+}
+
+SolveOptions hierarchical(int max_cycles, double tolerance, int coarsest_max_bodies = 150) {
+  SolveOptions o;
+  o.method = SolveMethod::Hierarchical;
+  o.max_iterations = max_cycles;
+  o.tolerance = tolerance;
+  // The default coarsest size would leave small test meshes with one coarse level; 150 gives
+  // several, so that intermediate levels are exercised too.
+  o.hierarchical.hierarchy.coarsest_max_bodies = coarsest_max_bodies;
+  return o;
+}
+
+double max_distance(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
+  double d = 0.0;
+  for (size_t i = 0; i < a.size(); ++i) d = std::max(d, (a[i] - b[i]).norm());
+  return d;
+}
+
+std::vector<Vec3> rest_points(const Mesh& mesh) {
+  std::vector<Vec3> p;
+  for (auto v : mesh.vertices()) p.push_back(mesh.point(v));
+  return p;
+}
+
+void expect_close_to_flat(const PosedMesh& s, const char* name, int coarsest_max_bodies) {
+  Deformer flat(s.mesh, PrismParameters{}, s.handles);
+  SolveOptions g;
+  g.tolerance = 1e-10;
+  const SolveReport rg = flat.solve(g);
+  ASSERT_TRUE(rg.converged);
+  Deformer hier(s.mesh, PrismParameters{}, s.handles);
+  const SolveReport rh = hier.solve(hierarchical(400, 1e-7, coarsest_max_bodies));
+  const double diagonal = bounding_box_diagonal(s.mesh);
+  const double position_error = max_distance(hier.vertex_positions(), flat.vertex_positions()) / diagonal;
+  std::cout << "[ metric   ] " << name << ": hierarchical " << rh.iterations << " cycles ("
+            << hier.hierarchical_solver()->levels() << " levels), energy " << rh.energy
+            << " vs flat " << rg.energy << " (" << 100 * (rh.energy / rg.energy - 1)
+            << "%), max vertex difference " << 100 * position_error << "% of the diagonal\n";
+  EXPECT_LT(std::abs(rh.energy / rg.energy - 1), 0.01);
+  EXPECT_LT(position_error, 0.005);
+  double previous = rh.initial_energy;
+  for (double e : rh.energies) {
+    EXPECT_LE(e, previous * (1 + 1e-12));
+    previous = e;
+  }
+}
+
+}  // namespace
+
+TEST(ClusterHierarchy, HandlesStayWholeAndLevelsShrink) {
+  const PosedMesh s = bent_cylinder();
+  Deformer d(s.mesh, PrismParameters{}, s.handles);
+  HierarchyOptions options;
+  options.coarsest_max_bodies = 100;
+  const ClusterHierarchy h = build_cluster_hierarchy(d.system(), options);
+  ASSERT_GE(h.coarse_levels(), 2);
+  int previous = d.system().n_bodies();
+  for (int l = 0; l < h.coarse_levels(); ++l) {
+    EXPECT_LT(h.cluster_count[l] * 4, previous) << "level " << l;  // about 8x per level
+    previous = h.cluster_count[l];
+    // A handle body (bodies 0 and 1) is alone in its cluster.
+    for (int handle = 0; handle < 2; ++handle) {
+      for (int b = 0; b < d.system().n_bodies(); ++b) {
+        if (b != handle) {
+          EXPECT_NE(h.cluster_of[l][b], h.cluster_of[l][handle]);
+        }
+      }
+    }
+    // Every cluster is non-empty and of bounded size.
+    std::vector<int> size(h.cluster_count[l], 0);
+    for (int c : h.cluster_of[l]) ++size[c];
+    for (int c = 0; c < h.cluster_count[l]; ++c) EXPECT_GT(size[c], 0);
+  }
+  EXPECT_LE(previous, 100);
+}
+
+TEST(ClusterHierarchy, AggregatesAreConnectedAndCompact) {
+  // A 30x30 grid graph: aggregates of 8 must be connected and no wider than a few cells.
+  const int n = 30;
+  std::vector<std::vector<int>> adjacency(n * n);
+  std::vector<Vec3> position(n * n);
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const int v = j * n + i;
+      position[v] = Vec3(i, j, 0);
+      if (i + 1 < n) adjacency[v].push_back(v + 1), adjacency[v + 1].push_back(v);
+      if (j + 1 < n) adjacency[v].push_back(v + n), adjacency[v + n].push_back(v);
+    }
+  const std::vector<int> agg = aggregate_nodes(adjacency, position, std::vector<bool>(n * n, false), 8);
+  const int count = *std::max_element(agg.begin(), agg.end()) + 1;
+  EXPECT_GT(count, n * n / 16);
+  EXPECT_LT(count, n * n / 4);
+  for (int a = 0; a < count; ++a) {
+    std::vector<int> members;
+    for (int v = 0; v < n * n; ++v)
+      if (agg[v] == a) members.push_back(v);
+    // Connected: a flood fill inside the aggregate reaches every member.
+    std::set<int> seen{members[0]};
+    std::vector<int> stack{members[0]};
+    while (!stack.empty()) {
+      const int v = stack.back();
+      stack.pop_back();
+      for (int w : adjacency[v])
+        if (agg[w] == a && seen.insert(w).second) stack.push_back(w);
+    }
+    EXPECT_EQ(seen.size(), members.size()) << "aggregate " << a;
+    double extent = 0;
+    for (int v : members)
+      for (int w : members) extent = std::max(extent, (position[v] - position[w]).norm());
+    EXPECT_LT(extent, 7.0) << "aggregate " << a;
+  }
+}
+
+TEST(SweepPlan, HalvesDoNotTouchAndCoverEveryMovableBody) {
+  const PosedMesh s = bent_cylinder();
+  Deformer d(s.mesh, PrismParameters{}, s.handles);
+  const RigidSystem& sys = d.system();
+  SweepPlan plan = plan_sweep(sys);
+  // 2,400 faces is below the threshold for threads: a single serial list.
+  EXPECT_TRUE(plan.half[1].empty());
+  const Mesh big = make_cylinder(0.25, 2.0, 80, 120, FaceShape::Quads);
+  Deformer db(big, PrismParameters{}, {});
+  plan = plan_sweep(db.system());
+  ASSERT_FALSE(plan.half[1].empty());
+  std::vector<int> side(db.system().n_bodies(), -1);
+  for (int h = 0; h < 2; ++h)
+    for (int b : plan.half[h]) side[b] = h;
+  for (const auto& c : db.system().couplings) {
+    if (side[c.body[0]] >= 0 && side[c.body[1]] >= 0) {
+      EXPECT_EQ(side[c.body[0]], side[c.body[1]]);
+    }
+  }
+  EXPECT_EQ(plan.half[0].size() + plan.half[1].size() + plan.cut.size(), size_t(db.system().n_bodies()));
+  EXPECT_LT(plan.cut.size() * 20, plan.half[0].size());
+}
+
+TEST(HierarchicalSolver, MatchesTheFlatSolverOnABentCylinder) {
+  expect_close_to_flat(bent_cylinder(), "cylinder bend 90, 2400 quads",
+                       HierarchyOptions{}.coarsest_max_bodies);
+}
+
+TEST(HierarchicalSolver, MatchesTheFlatSolverOnARealMesh) {
+  expect_close_to_flat(posed_spot(), "spot, 2928 quads", 150);
+}
+
+TEST(HierarchicalSolver, DraggingBackRestoresTheInput) {
+  const PosedMesh s = bent_cylinder();
+  Deformer d(s.mesh, PrismParameters{}, s.handles);
+  d.solve(hierarchical(50, 1e-8));
+  const std::vector<Vec3> rest = rest_points(s.mesh);
+  const double diagonal = bounding_box_diagonal(s.mesh);
+  ASSERT_GT(max_distance(d.vertex_positions(), rest), 0.1 * diagonal);
+  d.set_handle_transform(1, RigidTransform::identity());
+  const SolveReport back = d.solve(hierarchical(500, 1e-12));
+  std::cout << "[ metric   ] hierarchical drag back: " << back.iterations << " cycles\n";
+  EXPECT_LT(max_distance(d.vertex_positions(), rest), 1e-6 * diagonal);
+}
+
+TEST(HierarchicalSolver, RecoversFromACollapse) {
+  const Mesh mesh = make_cylinder(0.3, 1.0, 24, 16, FaceShape::Quads);
+  const int n = int(mesh.n_faces());
+  Deformer d(mesh, PrismParameters{}, {Handle{"a", {0}, Fix::All, {}}, Handle{"b", {n - 13}, Fix::All, {}}});
+  std::mt19937 rng(2);
+  std::normal_distribution<double> normal;
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  const FaceGeometry g = compute_face_geometry(mesh);
+  std::vector<RigidTransform> motions(n);
+  for (int f = 0; f < n; ++f) {
+    const Vec3 axis = Vec3(normal(rng), normal(rng), normal(rng)).normalized();
+    motions[f].rotation = Eigen::AngleAxisd(M_PI / 2 * uniform(rng), axis).toRotationMatrix();
+    motions[f].translation = Vec3(0.1, 0.5, 0) - motions[f].rotation * g.centroid[f];
+  }
+  d.set_face_motions(motions);
+  SolveOptions o = hierarchical(3000, 1e-13);
+  o.hierarchical.hierarchy.coarsest_max_bodies = 60;
+  const SolveReport r = d.solve(o);
+  const double error = max_distance(d.vertex_positions(), rest_points(mesh)) / bounding_box_diagonal(mesh);
+  std::cout << "[ metric   ] hierarchical collapse recovery: " << r.iterations << " cycles, max error "
+            << error << " of the diagonal\n";
+  EXPECT_LT(error, 1e-4);
+}
+
+TEST(HierarchicalSolver, AConvergedStateCostsNothing) {
+  const PosedMesh s = bent_cylinder();
+  Deformer d(s.mesh, PrismParameters{}, s.handles);
+  ASSERT_TRUE(d.solve(hierarchical(2000, 1e-6)).converged);
+  const SolveReport again = d.solve(hierarchical(2000, 1e-6));
+  EXPECT_EQ(again.iterations, 0);
+  EXPECT_TRUE(again.converged);
+  // A change of target starts it again.
+  d.set_handle_transform(1, make_rigid_transform(Vec3(1.0, -0.6, 0), Vec3::UnitZ(), -80.0, Vec3(0, 2, 0)));
+  EXPECT_GT(d.solve(hierarchical(5, 1e-6)).iterations, 0);
+}
