@@ -1,0 +1,43 @@
+#include "document.h"
+
+#include <algorithm>
+#include <cctype>
+
+#include "primo/mesh_io.h"
+#include "scenario_bridge.h"
+
+namespace primo::editor {
+
+bool is_scenario_path(const std::string& path) {
+  const size_t dot = path.find_last_of('.');
+  if (dot == std::string::npos) return false;
+  std::string ext = path.substr(dot);
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return char(std::tolower(c)); });
+  return ext == ".json";
+}
+
+std::unique_ptr<Document> make_document(Mesh mesh, std::string mesh_path) {
+  auto doc = std::make_unique<Document>();
+  doc->topology = std::make_shared<const MeshTopology>(build_topology(mesh));
+  doc->mesh = std::make_shared<const Mesh>(std::move(mesh));
+  doc->mesh_path = std::move(mesh_path);
+  doc->state = initial_edit_state(doc->n_faces());
+  doc->history.reset(doc->state);
+  return doc;
+}
+
+std::unique_ptr<Document> load_document(const std::string& path) {
+  if (!is_scenario_path(path)) return make_document(load_mesh(path), path);
+  const Scenario scenario = load_scenario(path);
+  Mesh mesh = load_mesh(scenario.mesh_path);
+  const ResolvedScenario resolved = resolve_scenario(scenario, mesh);
+  auto doc = make_document(std::move(mesh), scenario.mesh_path);
+  doc->scenario_path = path;
+  doc->solver = scenario.solver;
+  doc->state = import_scenario(scenario, resolved, *doc->topology);
+  doc->history.reset(doc->state);
+  return doc;
+}
+
+}  // namespace primo::editor

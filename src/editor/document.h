@@ -1,0 +1,39 @@
+#pragma once
+// One opened mesh with everything edited on it: the live EditState and its undo history,
+// plus where it came from (mesh file, scenario file, the scenario's solver settings).
+
+#include <memory>
+#include <string>
+
+#include "edit_state.h"
+#include "mesh_topology.h"
+#include "primo/scenario.h"
+#include "undo_stack.h"
+
+namespace primo::editor {
+
+struct Document {
+  std::shared_ptr<const Mesh> mesh;
+  std::shared_ptr<const MeshTopology> topology;
+  std::string mesh_path;      // the mesh file
+  std::string scenario_path;  // the scenario it was opened from or last saved to ("" if none)
+  SolverSpec solver;          // max_iterations / tolerance / method of a settle and of exports
+  EditState state;            // live: gestures edit it, `commit` records it
+  UndoStack history;
+
+  int n_faces() const { return topology->n_faces; }
+  // Records the live state as one undo step; false when nothing changed.
+  bool commit(const std::string& label) { return history.push(label, state); }
+};
+
+// True for paths the editor opens as scenarios (".json").
+bool is_scenario_path(const std::string& path);
+
+// Reads a mesh (OBJ, OFF, PLY, STL, OM) or a scenario with its mesh, resolved. Slow for big
+// meshes: call it off the UI thread. Throws primo::Error with a one-line message.
+std::unique_ptr<Document> load_document(const std::string& path);
+
+// A document for a mesh already in memory (tests, generated meshes).
+std::unique_ptr<Document> make_document(Mesh mesh, std::string mesh_path);
+
+}  // namespace primo::editor

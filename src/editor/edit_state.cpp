@@ -1,0 +1,159 @@
+#include "edit_state.h"
+
+#include <algorithm>
+
+namespace primo::editor {
+namespace {
+
+template <class T>
+bool same_array(const std::shared_ptr<const T>& a, const std::shared_ptr<const T>& b) {
+  if (a == b) return true;
+  if (!a || !b) return false;
+  return *a == *b;
+}
+
+bool same_factors(const FactorArray& a, const FactorArray& b) {
+  if (a == b) return true;
+  // Null means all 1: compare against an explicit array of ones.
+  const FactorArray& x = a ? a : b;
+  const FactorArray& y = a ? b : a;
+  if (!y) return std::all_of(x->begin(), x->end(), [](double v) { return v == 1.0; });
+  return *x == *y;
+}
+
+bool same_group_structure(const HandleGroup& a, const HandleGroup& b) {
+  return same_array(a.faces, b.faces) && a.mode == b.mode &&
+         (a.mode != HandleMode::Spring || a.stiffness == b.stiffness);
+}
+
+const char* default_prefix(HandleMode mode) {
+  switch (mode) {
+    case HandleMode::Fixed: return "Fixed";
+    case HandleMode::Spring: return "Spring";
+    default: return "Handle";
+  }
+}
+
+}  // namespace
+
+EditState initial_edit_state(int n_faces) {
+  EditState s;
+  s.selection = std::make_shared<const FaceMask>(size_t(n_faces), 0);
+  return s;
+}
+
+bool operator==(const EditState& a, const EditState& b) {
+  if (a.handles.size() != b.handles.size() || !(a.prisms == b.prisms) ||
+      !same_factors(a.height_factor, b.height_factor) ||
+      !same_factors(a.width_factor, b.width_factor) || !same_array(a.selection, b.selection))
+    return false;
+  for (size_t i = 0; i < a.handles.size(); ++i) {
+    const HandleGroup &x = a.handles[i], &y = b.handles[i];
+    if (x.name != y.name || !same_group_structure(x, y) || x.stiffness != y.stiffness ||
+        !(x.pose == y.pose) || x.center != y.center)
+      return false;
+  }
+  return true;
+}
+
+DeformationInputs deformation_inputs(const EditState& state) {
+  DeformationInputs in;
+  in.params.height = state.prisms.height;
+  in.params.width = state.prisms.width;
+  in.params.normal_blend = state.prisms.normal_blend;
+  if (state.height_factor) in.params.face_height_factor = *state.height_factor;
+  if (state.width_factor) in.params.face_width_factor = *state.width_factor;
+  for (const HandleGroup& g : state.handles) {
+    in.group_handle.push_back(-1);
+    in.group_force.push_back(-1);
+    if (g.mode == HandleMode::Spring) {
+      in.group_force.back() = int(in.forces.size());
+      in.forces.push_back({g.name, *g.faces, g.pose.translate, g.stiffness});
+    } else {
+      in.group_handle.back() = int(in.handles.size());
+      Fix fix = Fix::All;
+      if (g.mode == HandleMode::Position) fix = Fix::Position;
+      if (g.mode == HandleMode::Orientation) fix = Fix::Orientation;
+      in.handles.push_back({g.name, *g.faces, fix, g.transform()});
+    }
+  }
+  return in;
+}
+
+bool same_structure(const EditState& a, const EditState& b) {
+  if (a.handles.size() != b.handles.size() || !(a.prisms == b.prisms) ||
+      !same_factors(a.height_factor, b.height_factor) ||
+      !same_factors(a.width_factor, b.width_factor))
+    return false;
+  for (size_t i = 0; i < a.handles.size(); ++i)
+    if (!same_group_structure(a.handles[i], b.handles[i])) return false;
+  return true;
+}
+
+std::vector<int> face_groups(const EditState& state, int n_faces) {
+  std::vector<int> group(n_faces, -1);
+  for (size_t g = 0; g < state.handles.size(); ++g)
+    for (int f : *state.handles[g].faces)
+      if (f >= 0 && f < n_faces) group[f] = int(g);
+  return group;
+}
+
+int add_handle(EditState& state, const MeshTopology& topology, const std::vector<Vec3>& current,
+               std::vector<int> faces, HandleMode mode) {
+  std::sort(faces.begin(), faces.end());
+  faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
+  // 1. Take the faces away from the other groups.
+  std::vector<HandleGroup> kept;
+  for (size_t g = 0; g < state.handles.size(); ++g) {
+    HandleGroup h = state.handles[g];
+    std::vector<int> rest;
+    std::set_difference(h.faces->begin(), h.faces->end(), faces.begin(), faces.end(),
+                        std::back_inserter(rest));
+    if (rest.empty()) continue;
+    if (rest.size() != h.faces->size()) {
+      // The pivot stays the rest centroid of what is left; the pose is kept.
+      h.center = area_weighted_centroid(topology.rest_geometry, rest);
+      const Vec3 moved_center = state.handles[g].transform().apply(h.center);
+      h.pose.translate = moved_center - h.center;
+      h.faces = std::make_shared<const std::vector<int>>(std::move(rest));
+    }
+    kept.push_back(std::move(h));
+  }
+  state.handles = std::move(kept);
+  // 2. The new group, posed where its faces are now.
+  HandleGroup group = make_handle_group(
+      std::string(default_prefix(mode)) + " " + std::to_string(state.next_number++),
+      std::move(faces), mode, topology, current);
+  group.color = state.next_color++;
+  state.handles.push_back(std::move(group));
+  state.active = int(state.handles.size()) - 1;
+  return state.active;
+}
+
+void remove_handle(EditState& state, int index) {
+  if (index < 0 || index >= int(state.handles.size())) return;
+  state.handles.erase(state.handles.begin() + index);
+  if (state.active == index)
+    state.active = std::min(index, int(state.handles.size()) - 1);
+  else if (state.active > index)
+    --state.active;
+}
+
+void set_handle_mode(EditState& state, int index, HandleMode mode) {
+  if (index < 0 || index >= int(state.handles.size())) return;
+  HandleGroup& g = state.handles[index];
+  // A spring pulls by translation only; other modes keep the pose they had.
+  if (mode == HandleMode::Spring) g.pose.rotation = Eigen::Quaterniond::Identity();
+  g.mode = mode;
+}
+
+void reset_handle(EditState& state, int index) {
+  if (index < 0 || index >= int(state.handles.size())) return;
+  state.handles[index].pose = Pose{};
+}
+
+double factor_at(const FactorArray& factors, int face) {
+  return factors ? (*factors)[face] : 1.0;
+}
+
+}  // namespace primo::editor

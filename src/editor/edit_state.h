@@ -1,0 +1,78 @@
+#pragma once
+// Everything a user edits, as one value: handle groups, global prism settings, painted
+// per-face factors and the selection. Undo keeps whole EditStates; the large arrays are
+// shared between states until one changes (copy on write), so a step costs what it changed.
+// The solver's input is derived from an EditState, never stored beside it.
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "handle_model.h"
+#include "mesh_topology.h"
+#include "primo/constraints.h"
+#include "selection.h"
+
+namespace primo::editor {
+
+struct PrismSettings {
+  double height = 1.0;        // prisms.height: half-thickness / mean edge length
+  double width = 1.0;         // prisms.width
+  double normal_blend = 0.0;  // prisms.normal_blend (shell 0 .. plate 1)
+  bool operator==(const PrismSettings& o) const {
+    return height == o.height && width == o.width && normal_blend == o.normal_blend;
+  }
+};
+
+using FactorArray = std::shared_ptr<const std::vector<double>>;  // null: every face 1
+
+struct EditState {
+  std::vector<HandleGroup> handles;
+  PrismSettings prisms;
+  FactorArray height_factor;
+  FactorArray width_factor;
+  std::shared_ptr<const FaceMask> selection;
+  int active = -1;       // index into handles, or -1
+  int next_number = 1;   // for default handle names
+  int next_color = 0;
+};
+
+EditState initial_edit_state(int n_faces);
+
+// Deep equality (arrays by content when not shared). Which handle is active does not count:
+// activating a handle is not an undo step of its own.
+bool operator==(const EditState& a, const EditState& b);
+inline bool operator!=(const EditState& a, const EditState& b) { return !(a == b); }
+
+// What the engine needs, and which engine handle/force each group became.
+struct DeformationInputs {
+  PrismParameters params;
+  std::vector<Handle> handles;
+  std::vector<Force> forces;
+  std::vector<int> group_handle;  // engine handle index per group, or -1
+  std::vector<int> group_force;   // engine force index per group, or -1
+};
+DeformationInputs deformation_inputs(const EditState& state);
+
+// True when the engine can keep its bodies: same groups, modes, stiffnesses, prism settings
+// and factors; only poses may differ.
+bool same_structure(const EditState& a, const EditState& b);
+
+// Group index per face (-1 for free faces). A face in several groups shows the last.
+std::vector<int> face_groups(const EditState& state, int n_faces);
+
+// --- Operations behind the panels and shortcuts ----------------------------------------
+
+// Makes a group of `faces` (taken away from any other group; groups left empty disappear)
+// and makes it active. Returns its index.
+int add_handle(EditState& state, const MeshTopology& topology, const std::vector<Vec3>& current,
+               std::vector<int> faces, HandleMode mode);
+void remove_handle(EditState& state, int index);
+void set_handle_mode(EditState& state, int index, HandleMode mode);
+// Back to the rest pose.
+void reset_handle(EditState& state, int index);
+
+// Per-face factor lookups (1 where null).
+double factor_at(const FactorArray& factors, int face);
+
+}  // namespace primo::editor

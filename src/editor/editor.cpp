@@ -1,0 +1,905 @@
+#include "editor.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <exception>
+#include <filesystem>
+#include <limits>
+
+#include "output_files.h"
+#include "primo/error.h"
+#include "primo/mesh_io.h"
+#include "scenario_bridge.h"
+
+namespace primo::editor {
+namespace {
+
+glm::dvec3 to_glm(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
+
+std::string file_name(const std::string& path) {
+  return std::filesystem::path(path).filename().string();
+}
+
+// Seconds between solver rebuilds while a paint stroke is under way.
+constexpr double kPaintSyncSeconds = 0.3;
+// Seconds between hover picks (each may need a pick-buffer render).
+constexpr double kHoverSeconds = 0.08;
+
+}  // namespace
+
+const char* tool_label(Tool tool) {
+  switch (tool) {
+    case Tool::Select: return "Select";
+    case Tool::Drag: return "Drag";
+    case Tool::Move: return "Move";
+    case Tool::Rotate: return "Rotate";
+    case Tool::Paint: return "Paint";
+  }
+  return "?";
+}
+
+Editor::Editor(std::function<void()> wake_ui)
+    : wake_ui_(std::move(wake_ui)), worker_(std::make_unique<SolverWorker>(wake_ui_)) {}
+
+Editor::~Editor() {
+  if (task_.valid()) task_.wait();
+}
+
+// --- Files ------------------------------------------------------------------------------
+
+void Editor::open(const std::string& path) {
+  if (task_.valid()) return error("Still busy with " + task_label_ + "; try again when it is done");
+  task_label_ = "Opening " + file_name(path);
+  task_started_ = clock_;
+  task_ = std::async(std::launch::async, [this, path]() -> std::function<void()> {
+    std::shared_ptr<Document> doc = load_document(path);
+    return [this, doc]() mutable {
+      apply_document(std::make_unique<Document>(std::move(*doc)));
+    };
+  });
+}
+
+void Editor::adopt(std::unique_ptr<Document> document) { apply_document(std::move(document)); }
+
+void Editor::apply_document(std::unique_ptr<Document> doc) {
+  cancel_gesture();
+  doc_ = std::move(doc);
+  geometry_.reset();
+  sent_any_ = false;
+  hovered_handle_ = -1;
+  geometry_changed_ = overlay_changed_ = true;
+  Vec3 c;
+  double r;
+  bounding_sphere(doc_->topology->rest_points, c, r);
+  camera_.set_scene_radius(r);
+  camera_.frame(to_glm(c), r, true);
+  tools.tool = doc_->state.handles.empty() ? Tool::Select : Tool::Drag;
+  sync_solver();
+  info("Opened " + (doc_->scenario_path.empty() ? doc_->mesh_path : doc_->scenario_path) + ": " +
+       std::to_string(doc_->topology->n_vertices) + " vertices, " +
+       std::to_string(doc_->n_faces()) + " faces, " + std::to_string(doc_->state.handles.size()) +
+       " handles");
+}
+
+void Editor::save_mesh(const std::string& path) {
+  if (!doc_) return error("Nothing to save: open a mesh first");
+  if (task_.valid()) return error("Still busy with " + task_label_ + "; try again when it is done");
+  try {
+    app::check_mesh_output_path(path);
+  } catch (const std::exception& e) {
+    return error(e.what());
+  }
+  auto mesh = std::make_shared<Mesh>(*doc_->mesh);
+  const std::vector<Vec3>& points = positions();
+  for (auto v : mesh->vertices()) mesh->set_point(v, points[v.idx()]);
+  if (!status_.busy() && status_.phase == SolverPhase::Stopped)
+    info("Note: the solver stopped at its iteration limit before converging");
+  task_label_ = "Saving " + file_name(path);
+  task_started_ = clock_;
+  task_ = std::async(std::launch::async, [this, mesh, path]() -> std::function<void()> {
+    primo::save_mesh(*mesh, path);
+    return [this, path] { info("Saved the deformed mesh to " + path); };
+  });
+}
+
+void Editor::save_scenario(const std::string& path) {
+  if (!doc_) return error("Nothing to save: open a mesh first");
+  try {
+    const Scenario s = export_scenario(doc_->state, doc_->mesh_path, path, doc_->solver);
+    app::write_text_atomically(path, scenario_to_json(s));
+    doc_->scenario_path = path;
+    info("Saved the scenario to " + path);
+  } catch (const std::exception& e) {
+    error(e.what());
+  }
+}
+
+double Editor::file_task_seconds() const { return task_.valid() ? clock_ - task_started_ : 0.0; }
+
+// --- Per frame --------------------------------------------------------------------------
+
+void Editor::update(double seconds) {
+  clock_ += seconds;
+  frame_ms_ = frame_ms_ == 0.0 ? 1000.0 * seconds : 0.9 * frame_ms_ + 100.0 * seconds;
+  if (gesture_ == Gesture::DragHandle || gesture_ == Gesture::Gizmo) {
+    ++current_drag_.frames;
+    current_drag_.total_ms += 1000.0 * seconds;
+    current_drag_.max_ms = std::max(current_drag_.max_ms, 1000.0 * seconds);
+  }
+
+  if (task_.valid() &&
+      task_.wait_for(std::chrono::seconds(0)) == std::future_status::ready) {
+    try {
+      std::function<void()> finish = task_.get();
+      finish();
+    } catch (const std::exception& e) {
+      error(e.what());
+    }
+  }
+  if (!doc_) return;
+
+  if (gesture_ == Gesture::Paint && clock_ - last_paint_sync_ >= kPaintSyncSeconds) {
+    sync_solver();
+    last_paint_sync_ = clock_;
+  }
+  worker_->set_outputs(display.heat_map, display.prisms);
+  const SolverPhase before = status_.phase;
+  status_ = worker_->status();
+  if (status_.phase == SolverPhase::Failed && before != SolverPhase::Failed)
+    error("The solver could not use this setup: " + status_.error);
+  if (status_.geometry && status_.geometry != geometry_) {
+    geometry_ = status_.geometry;
+    geometry_changed_ = true;
+    if (display.heat_map) overlay_changed_ = true;
+  }
+  if (display.heat_map != last_display_.heat_map ||
+      display.paint_overlay != last_display_.paint_overlay || tools.tool != last_tools_.tool ||
+      tools.paint_layer != last_tools_.paint_layer)
+    overlay_changed_ = true;
+  last_display_ = display;
+  last_tools_ = tools;
+  camera_.update(seconds);
+}
+
+bool Editor::settled() const {
+  if (task_.valid() || !doc_ || gesture_ != Gesture::None) return false;
+  if (!worker_->idle_for_latest()) return false;
+  return worker_->status().geometry == geometry_;
+}
+
+bool Editor::take_geometry_changed() { return std::exchange(geometry_changed_, false); }
+bool Editor::take_overlay_changed() { return std::exchange(overlay_changed_, false); }
+
+const std::vector<Vec3>& Editor::positions() const {
+  static const std::vector<Vec3> none;
+  if (geometry_) return geometry_->positions;
+  return doc_ ? doc_->topology->rest_points : none;
+}
+
+// --- Solver -----------------------------------------------------------------------------
+
+void Editor::sync_solver() {
+  if (!doc_) return;
+  const EditState& s = doc_->state;
+  if (!sent_any_ || !same_structure(s, sent_)) {
+    auto problem = std::make_shared<SolverProblem>();
+    problem->mesh = doc_->mesh;
+    problem->topology = doc_->topology;
+    problem->inputs = deformation_inputs(s);
+    problem->spec = doc_->solver;
+    worker_->submit_problem(std::move(problem));
+  } else {
+    bool moved = false;
+    for (size_t g = 0; g < s.handles.size(); ++g)
+      moved = moved || !(s.handles[g].pose == sent_.handles[g].pose);
+    if (moved) {
+      SolverTargets targets;
+      for (const HandleGroup& g : s.handles) {
+        if (g.mode == HandleMode::Spring)
+          targets.forces.push_back(g.pose.translate);
+        else
+          targets.handles.push_back(g.transform());
+      }
+      worker_->submit_targets(std::move(targets));
+    }
+  }
+  sent_ = s;
+  sent_any_ = true;
+}
+
+void Editor::live_edit() {
+  overlay_changed_ = true;
+  // Paint strokes rebuild the solver's prisms: at most every kPaintSyncSeconds (and at the
+  // end of the stroke), not at every dab.
+  if (gesture_ == Gesture::Paint) return;
+  sync_solver();
+}
+
+void Editor::commit(const std::string& label) {
+  if (!doc_) return;
+  overlay_changed_ = true;
+  sync_solver();
+  doc_->commit(label);
+}
+
+// --- Input ------------------------------------------------------------------------------
+
+void Editor::set_viewport(const ViewportRect& rect) {
+  viewport_ = rect;
+  camera_.set_viewport(int(std::lround(rect.width * rect.scale)),
+                       int(std::lround(rect.height * rect.scale)));
+}
+
+bool Editor::cursor_in_viewport() const {
+  return cursor_.x >= 0 && cursor_.y >= 0 && cursor_.x < camera_.width() &&
+         cursor_.y < camera_.height();
+}
+
+void Editor::handle_event(const InputEvent& e, bool ui_mouse, bool ui_keyboard) {
+  switch (e.type) {
+    case InputEvent::Type::CursorMove: on_cursor(e); break;
+    case InputEvent::Type::MouseButton: on_mouse_button(e, ui_mouse); break;
+    case InputEvent::Type::Scroll: on_scroll(e, ui_mouse); break;
+    case InputEvent::Type::Key:
+      if (const int bit = modifier_bit(e.key)) {
+        if (e.action == GLFW_RELEASE)
+          held_mods_ &= ~bit;
+        else
+          held_mods_ |= bit;
+      }
+      if (!ui_keyboard && e.action != GLFW_RELEASE) on_key(e);
+      break;
+    case InputEvent::Type::Char: break;
+    case InputEvent::Type::Drop:
+      if (!e.paths.empty()) open(e.paths.front());
+      break;
+  }
+}
+
+void Editor::on_cursor(const InputEvent& e) {
+  cursor_ = {(e.x - viewport_.x) * viewport_.scale, (e.y - viewport_.y) * viewport_.scale};
+  if (gesture_ != Gesture::None)
+    update_gesture();
+  else
+    update_hover();
+}
+
+void Editor::on_scroll(const InputEvent& e, bool ui_mouse) {
+  if (ui_mouse || !cursor_in_viewport()) return;
+  if ((held_mods_ & GLFW_MOD_CONTROL) &&
+      (tools.tool == Tool::Paint || (tools.tool == Tool::Select && tools.shape == SelectShape::Brush))) {
+    tools.brush_radius = std::clamp(tools.brush_radius * std::pow(1.15, e.y), 2.0, 400.0);
+    return;
+  }
+  camera_.dolly(e.y, cursor_);
+}
+
+void Editor::on_mouse_button(const InputEvent& e, bool ui_mouse) {
+  held_mods_ = e.mods | (held_mods_ & ~(GLFW_MOD_SHIFT | GLFW_MOD_CONTROL | GLFW_MOD_ALT));
+  if (e.action == GLFW_RELEASE) {
+    if (gesture_ != Gesture::None && e.button == gesture_button_) end_gesture();
+    return;
+  }
+  if (gesture_ != Gesture::None) {
+    // Right button during a tool gesture cancels it (as in Blender).
+    if (e.button == GLFW_MOUSE_BUTTON_RIGHT && gesture_button_ == GLFW_MOUSE_BUTTON_LEFT)
+      cancel_gesture();
+    return;
+  }
+  if (ui_mouse || !cursor_in_viewport()) return;
+  const bool shift = e.mods & GLFW_MOD_SHIFT, ctrl = e.mods & GLFW_MOD_CONTROL,
+             alt = e.mods & GLFW_MOD_ALT;
+  press_ = last_ = cursor_;
+  gesture_button_ = e.button;
+  switch (e.button) {
+    case GLFW_MOUSE_BUTTON_MIDDLE:
+      gesture_ = (shift || alt) ? Gesture::Pan : ctrl ? Gesture::Zoom : Gesture::Orbit;
+      break;
+    case GLFW_MOUSE_BUTTON_RIGHT:
+      gesture_ = (alt || ctrl) ? Gesture::Zoom : shift ? Gesture::Pan : Gesture::Orbit;
+      break;
+    case GLFW_MOUSE_BUTTON_LEFT:
+      if (alt)
+        gesture_ = shift ? Gesture::Pan : Gesture::Orbit;
+      else
+        begin_tool_gesture(e.mods);
+      break;
+    default: break;
+  }
+  if (gesture_ == Gesture::None) gesture_button_ = -1;
+}
+
+void Editor::begin_tool_gesture(int mods) {
+  if (!doc_) return;
+  const bool shift = mods & GLFW_MOD_SHIFT, ctrl = mods & GLFW_MOD_CONTROL;
+  gesture_start_state_ = doc_->state;
+  EditState& s = doc_->state;
+  switch (tools.tool) {
+    case Tool::Select:
+      if (tools.shape == SelectShape::Brush) {
+        select_op_ = ctrl ? SelectOp::Subtract : SelectOp::Add;
+        gesture_ = Gesture::SelectBrush;
+        brush_dab();
+      } else {
+        select_op_ = shift ? SelectOp::Add : ctrl ? SelectOp::Subtract : SelectOp::Replace;
+        gesture_ = tools.shape == SelectShape::Box ? Gesture::SelectBox : Gesture::SelectLasso;
+        lasso_ = {cursor_};
+      }
+      return;
+    case Tool::Paint:
+      paint_erase_ = ctrl;
+      gesture_ = Gesture::Paint;
+      brush_dab();
+      return;
+    case Tool::Move:
+    case Tool::Rotate: {
+      GizmoKind kind;
+      glm::dvec3 center;
+      if (gizmo_visible(kind, center)) {
+        const GizmoPart part = gizmo_hit(kind, camera_, center, cursor_);
+        if (part != GizmoPart::None) {
+          gizmo_ = std::make_unique<GizmoDrag>(kind, part, camera_, center, cursor_);
+          drag_group_ = s.active;
+          drag_start_pose_ = s.handles[s.active].pose;
+          current_drag_ = {};
+          gesture_ = Gesture::Gizmo;
+          return;
+        }
+      }
+      break;  // a click elsewhere picks the handle to put the gizmo on
+    }
+    case Tool::Drag: break;
+  }
+
+  const int face = face_at_cursor();
+  const std::vector<int> groups = face_groups(s, doc_->n_faces());
+  const int g = face >= 0 ? groups[face] : -1;
+  if (g < 0) {
+    if (tools.tool == Tool::Drag)
+      info(s.handles.empty() ? "No handles yet: select faces (Q) and press Ctrl+G to make one"
+                             : "Not on a handle: click a coloured region to drag it");
+    return;
+  }
+  s.active = g;
+  overlay_changed_ = true;
+  if (tools.tool != Tool::Drag) return;
+  if (!is_draggable(s.handles[g].mode)) {
+    info("'" + s.handles[g].name + "' is a fixed region; change its mode to drag it");
+    return;
+  }
+  drag_group_ = g;
+  drag_start_pose_ = s.handles[g].pose;
+  // The grabbed point: where the cursor meets the surface (eye depth from the pick buffer).
+  drag_anchor_ = handle_pivot(g);
+  if (picker_) {
+    const PickImage image = picker_->read(int(cursor_.x), int(cursor_.y), 1, 1);
+    const double depth = image.depth_at(int(cursor_.x), int(cursor_.y));
+    if (std::isfinite(depth)) {
+      const Ray ray = camera_.ray(cursor_);
+      const double along = glm::dot(ray.direction, camera_.forward());
+      const double t = (depth - glm::dot(ray.origin - camera_.eye(), camera_.forward())) / along;
+      drag_anchor_ = ray.origin + t * ray.direction;
+    }
+  }
+  current_drag_ = {};
+  gesture_ = Gesture::DragHandle;
+}
+
+void Editor::update_gesture() {
+  const glm::dvec2 d = cursor_ - last_;
+  EditState* s = doc_ ? &doc_->state : nullptr;
+  switch (gesture_) {
+    case Gesture::Orbit: camera_.orbit(d.x, d.y); break;
+    case Gesture::Pan: camera_.pan(d.x, d.y); break;
+    case Gesture::Zoom: camera_.dolly_drag(d.y); break;
+    case Gesture::SelectBrush:
+    case Gesture::Paint: brush_dab(); break;
+    case Gesture::SelectBox: break;
+    case Gesture::SelectLasso:
+      if (glm::length(cursor_ - lasso_.back()) >= 3.0) lasso_.push_back(cursor_);
+      break;
+    case Gesture::DragHandle: {
+      HandleGroup& g = s->handles[drag_group_];
+      if (g.mode == HandleMode::Orientation) {
+        g.pose.rotation = (drag_rotation(camera_, press_, cursor_) * drag_start_pose_.rotation).normalized();
+      } else {
+        const glm::dvec3 delta = view_plane_point(camera_, drag_anchor_, cursor_) - drag_anchor_;
+        g.pose.translate = drag_start_pose_.translate + Vec3(delta.x, delta.y, delta.z);
+      }
+      live_edit();
+      break;
+    }
+    case Gesture::Gizmo: {
+      HandleGroup& g = s->handles[drag_group_];
+      const bool snap = held_mods_ & GLFW_MOD_CONTROL;
+      if (gizmo_->kind() == GizmoKind::Translate)
+        g.pose.translate = drag_start_pose_.translate +
+                           gizmo_->translation(camera_, cursor_, snap,
+                                               snap_step_for(doc_->topology->bbox_diagonal));
+      else
+        g.pose.rotation = (gizmo_->rotation(camera_, cursor_, snap) * drag_start_pose_.rotation).normalized();
+      live_edit();
+      break;
+    }
+    case Gesture::None: break;
+  }
+  last_ = cursor_;
+}
+
+void Editor::end_gesture() {
+  const Gesture g = gesture_;
+  gesture_ = Gesture::None;
+  gesture_button_ = -1;
+  if (!doc_) return;
+  switch (g) {
+    case Gesture::SelectBox:
+    case Gesture::SelectLasso: {
+      std::vector<int> faces;
+      if (glm::length(cursor_ - press_) < 3.0) {
+        const int f = face_at_cursor();  // a click: the face under the cursor
+        if (f >= 0) faces.push_back(f);
+      } else if (g == Gesture::SelectBox) {
+        faces = faces_under(ScreenShape::box(press_, cursor_));
+      } else {
+        lasso_.push_back(cursor_);
+        faces = faces_under(ScreenShape::lasso(lasso_));
+      }
+      FaceMask mask = *doc_->state.selection;
+      apply_selection(mask, faces, select_op_);
+      doc_->state.selection = std::make_shared<const FaceMask>(std::move(mask));
+      lasso_.clear();
+      commit(g == Gesture::SelectBox ? "Box select" : "Lasso select");
+      break;
+    }
+    case Gesture::SelectBrush: commit("Brush select"); break;
+    case Gesture::Paint:
+      commit(tools.paint_layer == PaintLayer::Height ? "Paint stiffness" : "Paint width");
+      break;
+    case Gesture::DragHandle:
+    case Gesture::Gizmo: {
+      const std::string name = doc_->state.handles[drag_group_].name;
+      const char* verb = g == Gesture::DragHandle ? "Drag"
+                         : gizmo_->kind() == GizmoKind::Translate ? "Move" : "Rotate";
+      commit(std::string(verb) + " '" + name + "'");
+      drag_stats_ = current_drag_;
+      if (drag_stats_.frames > 0)
+        std::printf("[primo edit] drag '%s': %d frames, %.1f ms mean, %.1f ms max per frame; "
+                    "solver %.1f ms per iteration\n",
+                    name.c_str(), drag_stats_.frames, drag_stats_.total_ms / drag_stats_.frames,
+                    drag_stats_.max_ms, 1000.0 * status_.seconds_per_iteration);
+      break;
+    }
+    default: break;
+  }
+  gizmo_.reset();
+  drag_group_ = -1;
+}
+
+void Editor::cancel_gesture() {
+  const Gesture g = gesture_;
+  gesture_ = Gesture::None;
+  gesture_button_ = -1;
+  gizmo_.reset();
+  drag_group_ = -1;
+  lasso_.clear();
+  if (!doc_) return;
+  if (g == Gesture::SelectBrush || g == Gesture::Paint || g == Gesture::DragHandle ||
+      g == Gesture::Gizmo) {
+    doc_->state = gesture_start_state_;
+    overlay_changed_ = true;
+    sync_solver();
+  }
+}
+
+void Editor::brush_dab() {
+  const double r = tools.brush_radius * viewport_.scale;
+  const std::vector<int> faces = faces_under(ScreenShape::circle(cursor_, r));
+  EditState& s = doc_->state;
+  if (gesture_ == Gesture::SelectBrush) {
+    FaceMask mask = *s.selection;
+    apply_selection(mask, faces, select_op_);
+    if (mask != *s.selection) s.selection = std::make_shared<const FaceMask>(std::move(mask));
+    overlay_changed_ = true;
+    return;
+  }
+  const double value = paint_erase_ ? 1.0
+                       : tools.paint_layer == PaintLayer::Height ? tools.paint_height
+                                                                 : tools.paint_width;
+  FactorArray& layer = layer_factors(s, tools.paint_layer);
+  bool changes = false;
+  for (int f : faces) changes = changes || factor_at(layer, f) != value;
+  if (!changes) return;
+  layer = paint_factors(layer, doc_->n_faces(), faces, value);
+  live_edit();
+}
+
+std::vector<int> Editor::faces_under(const ScreenShape& shape) {
+  int x0, y0, x1, y1;
+  shape.bounds(x0, y0, x1, y1);
+  x0 = std::max(x0, 0);
+  y0 = std::max(y0, 0);
+  x1 = std::min(x1, camera_.width());
+  y1 = std::min(y1, camera_.height());
+  PickImage image;
+  if (picker_ && x1 > x0 && y1 > y0) image = picker_->read(x0, y0, x1 - x0, y1 - y0);
+  const std::vector<Vec3> centroids = face_centroids(*doc_->topology, positions());
+  std::vector<ProjectedPoint> projected(centroids.size());
+  const glm::dmat4 m = camera_.projection() * camera_.view();
+  const glm::dvec3 eye = camera_.eye(), forward = camera_.forward();
+  for (size_t f = 0; f < centroids.size(); ++f) {
+    const glm::dvec3 c = to_glm(centroids[f]);
+    const glm::dvec4 clip = m * glm::dvec4(c, 1.0);
+    projected[f].depth = glm::dot(c - eye, forward);
+    if (clip.w <= 0) continue;
+    projected[f].x = (clip.x / clip.w * 0.5 + 0.5) * camera_.width();
+    projected[f].y = (0.5 - clip.y / clip.w * 0.5) * camera_.height();
+  }
+  return faces_in_shape(shape, image, projected, tools.xray,
+                        0.01 * doc_->topology->bbox_diagonal);
+}
+
+int Editor::face_at_cursor() {
+  if (!doc_ || !cursor_in_viewport()) return -1;
+  if (picker_) return picker_->read(int(cursor_.x), int(cursor_.y), 1, 1).face_at(int(cursor_.x), int(cursor_.y));
+  const std::vector<int> near = faces_under(ScreenShape::circle(cursor_, 4.0));
+  return near.empty() ? -1 : near.front();
+}
+
+void Editor::update_hover() {
+  if (!doc_) return;
+  GizmoKind kind;
+  glm::dvec3 center;
+  const GizmoPart part = gizmo_visible(kind, center) ? gizmo_hit(kind, camera_, center, cursor_)
+                                                     : GizmoPart::None;
+  gizmo_hover_ = part;
+  if (tools.tool == Tool::Select || tools.tool == Tool::Paint) {
+    if (hovered_handle_ != -1) overlay_changed_ = true;
+    hovered_handle_ = -1;
+    return;
+  }
+  if (clock_ - last_hover_pick_ < kHoverSeconds) return;
+  last_hover_pick_ = clock_;
+  const int face = part == GizmoPart::None ? face_at_cursor() : -1;
+  int g = -1;
+  if (face >= 0)
+    for (size_t i = 0; i < doc_->state.handles.size() && g < 0; ++i) {
+      const auto& faces = *doc_->state.handles[i].faces;
+      if (std::binary_search(faces.begin(), faces.end(), face)) g = int(i);
+    }
+  if (g != hovered_handle_) overlay_changed_ = true;
+  hovered_handle_ = g;
+}
+
+// --- Keyboard ---------------------------------------------------------------------------
+
+void Editor::on_key(const InputEvent& e) {
+  const bool ctrl = e.mods & GLFW_MOD_CONTROL, shift = e.mods & GLFW_MOD_SHIFT,
+             alt = e.mods & GLFW_MOD_ALT;
+  const bool plain = !(ctrl || shift || alt);
+  switch (e.key) {
+    case GLFW_KEY_ESCAPE: cancel_gesture(); return;
+    case GLFW_KEY_Z:
+      if (ctrl && shift) return redo();
+      if (ctrl) return undo();
+      if (alt) {
+        tools.xray = !tools.xray;
+        return info(tools.xray ? "X-ray selection on: hidden faces are selected too"
+                               : "X-ray selection off");
+      }
+      return;
+    case GLFW_KEY_Y:
+      if (ctrl) redo();
+      return;
+    case GLFW_KEY_Q:
+      if (ctrl) return request_quit();
+      if (plain) set_tool(Tool::Select);
+      return;
+    case GLFW_KEY_G:
+      if (ctrl && alt) return make_handle(HandleMode::Spring);
+      if (ctrl && shift) return make_handle(HandleMode::Fixed);
+      if (ctrl) return make_handle(HandleMode::Pose);
+      if (alt && shift) return reset_all_handles();
+      if (alt && doc_) return reset_handle(doc_->state.active);
+      if (plain) set_tool(Tool::Drag);
+      return;
+    case GLFW_KEY_W:
+      if (plain) set_tool(Tool::Move);
+      return;
+    case GLFW_KEY_E:
+      if (plain) set_tool(Tool::Rotate);
+      return;
+    case GLFW_KEY_P:
+      if (plain) set_tool(Tool::Paint);
+      return;
+    case GLFW_KEY_C:
+    case GLFW_KEY_B:
+    case GLFW_KEY_L:
+      if (!plain) return;
+      tools.shape = e.key == GLFW_KEY_C   ? SelectShape::Brush
+                    : e.key == GLFW_KEY_B ? SelectShape::Box
+                                          : SelectShape::Lasso;
+      return set_tool(Tool::Select);
+    case GLFW_KEY_LEFT_BRACKET:
+      tools.brush_radius = std::max(2.0, tools.brush_radius / 1.2);
+      return;
+    case GLFW_KEY_RIGHT_BRACKET:
+      tools.brush_radius = std::min(400.0, tools.brush_radius * 1.2);
+      return;
+    case GLFW_KEY_A:
+      if (alt) return clear_selection();
+      if (plain) select_all();
+      return;
+    case GLFW_KEY_I:
+      if (ctrl) invert_selection();
+      return;
+    case GLFW_KEY_EQUAL:
+    case GLFW_KEY_KP_ADD:
+      if (ctrl) grow_selection();
+      return;
+    case GLFW_KEY_MINUS:
+    case GLFW_KEY_KP_SUBTRACT:
+      if (ctrl) shrink_selection();
+      return;
+    case GLFW_KEY_DELETE:
+    case GLFW_KEY_X:
+      if (plain && doc_) delete_handle(doc_->state.active);
+      return;
+    case GLFW_KEY_TAB:
+      if (doc_ && !doc_->state.handles.empty()) {
+        const int n = int(doc_->state.handles.size());
+        set_active_handle((doc_->state.active + (shift ? n - 1 : 1)) % n);
+      }
+      return;
+    case GLFW_KEY_F:
+    case GLFW_KEY_KP_DECIMAL:
+      if (plain) frame_selection();
+      return;
+    case GLFW_KEY_HOME: return frame_all();
+    case GLFW_KEY_KP_1: return camera_.view_preset(ctrl ? ViewPreset::Back : ViewPreset::Front);
+    case GLFW_KEY_KP_3: return camera_.view_preset(ctrl ? ViewPreset::Left : ViewPreset::Right);
+    case GLFW_KEY_KP_7: return camera_.view_preset(ctrl ? ViewPreset::Bottom : ViewPreset::Top);
+    case GLFW_KEY_KP_5: return camera_.set_orthographic(!camera_.orthographic());
+    case GLFW_KEY_4: if (plain) display.wireframe = !display.wireframe; return;
+    case GLFW_KEY_5: if (plain) display.smooth = !display.smooth; return;
+    case GLFW_KEY_6: if (plain) display.prisms = !display.prisms; return;
+    case GLFW_KEY_7: if (plain) display.heat_map = !display.heat_map; return;
+    case GLFW_KEY_8: if (plain) display.paint_overlay = !display.paint_overlay; return;
+    default: return;
+  }
+}
+
+// --- Commands ---------------------------------------------------------------------------
+
+void Editor::undo() {
+  if (!doc_) return;
+  cancel_gesture();
+  if (!doc_->history.can_undo()) return info("Nothing to undo");
+  const std::string label = doc_->history.undo_label();
+  doc_->state = doc_->history.undo();
+  overlay_changed_ = true;
+  sync_solver();
+  info("Undo " + label);
+}
+
+void Editor::redo() {
+  if (!doc_) return;
+  cancel_gesture();
+  if (!doc_->history.can_redo()) return info("Nothing to redo");
+  doc_->state = doc_->history.redo();
+  overlay_changed_ = true;
+  sync_solver();
+  info("Redo " + doc_->history.undo_label());
+}
+
+void Editor::set_selection(const FaceMask& mask, const std::string& label) {
+  if (!doc_) return;
+  doc_->state.selection = std::make_shared<const FaceMask>(mask);
+  commit(label);
+}
+
+void Editor::select_all() {
+  if (!doc_) return;
+  FaceMask m = *doc_->state.selection;
+  primo::editor::select_all(m);
+  set_selection(m, "Select all");
+}
+
+void Editor::clear_selection() {
+  if (!doc_) return;
+  FaceMask m = *doc_->state.selection;
+  primo::editor::clear_selection(m);
+  set_selection(m, "Clear selection");
+}
+
+void Editor::invert_selection() {
+  if (!doc_) return;
+  FaceMask m = *doc_->state.selection;
+  primo::editor::invert_selection(m);
+  set_selection(m, "Invert selection");
+}
+
+void Editor::grow_selection() {
+  if (!doc_) return;
+  FaceMask m = *doc_->state.selection;
+  primo::editor::grow_selection(m, *doc_->topology);
+  set_selection(m, "Grow selection");
+}
+
+void Editor::shrink_selection() {
+  if (!doc_) return;
+  FaceMask m = *doc_->state.selection;
+  primo::editor::shrink_selection(m, *doc_->topology);
+  set_selection(m, "Shrink selection");
+}
+
+void Editor::make_handle(HandleMode mode) {
+  if (!doc_) return;
+  std::vector<int> faces = selected_faces(*doc_->state.selection);
+  if (faces.empty())
+    return error("Select faces first: press Q and brush over the surface, then make the handle");
+  if (int(faces.size()) == doc_->n_faces() && mode != HandleMode::Spring)
+    info("Every face is in this handle: the whole mesh will move rigidly");
+  EditState& s = doc_->state;
+  const int g = add_handle(s, *doc_->topology, positions(), std::move(faces), mode);
+  FaceMask none = *s.selection;
+  primo::editor::clear_selection(none);
+  s.selection = std::make_shared<const FaceMask>(std::move(none));
+  commit("New " + std::string(mode_label(mode)) + " '" + s.handles[g].name + "'");
+  if (tools.tool == Tool::Select && is_draggable(mode)) set_tool(Tool::Drag);
+  info("Made '" + s.handles[g].name + "' (" + mode_label(mode) + ") from " +
+       std::to_string(s.handles[g].faces->size()) + " faces");
+}
+
+void Editor::delete_handle(int index) {
+  if (!doc_ || index < 0 || index >= int(doc_->state.handles.size())) return;
+  const std::string name = doc_->state.handles[index].name;
+  remove_handle(doc_->state, index);
+  hovered_handle_ = -1;
+  commit("Delete '" + name + "'");
+}
+
+void Editor::reset_handle(int index) {
+  if (!doc_ || index < 0 || index >= int(doc_->state.handles.size())) return;
+  primo::editor::reset_handle(doc_->state, index);
+  commit("Reset '" + doc_->state.handles[index].name + "'");
+}
+
+void Editor::reset_all_handles() {
+  if (!doc_) return;
+  for (size_t i = 0; i < doc_->state.handles.size(); ++i)
+    primo::editor::reset_handle(doc_->state, int(i));
+  commit("Reset all handles");
+}
+
+void Editor::set_active_handle(int index) {
+  if (!doc_ || index < -1 || index >= int(doc_->state.handles.size())) return;
+  doc_->state.active = index;
+  overlay_changed_ = true;
+}
+
+void Editor::set_handle_mode(int index, HandleMode mode) {
+  if (!doc_ || index < 0 || index >= int(doc_->state.handles.size())) return;
+  if (doc_->state.handles[index].mode == mode) return;
+  primo::editor::set_handle_mode(doc_->state, index, mode);
+  commit("'" + doc_->state.handles[index].name + "' to " + mode_label(mode));
+}
+
+void Editor::set_tool(Tool tool) {
+  if (gesture_ != Gesture::None) cancel_gesture();
+  tools.tool = tool;
+  overlay_changed_ = true;
+}
+
+void Editor::frame_all() {
+  if (!doc_) return;
+  Vec3 c;
+  double r;
+  bounding_sphere(positions(), c, r);
+  camera_.frame(to_glm(c), r);
+}
+
+void Editor::frame_selection() {
+  if (!doc_) return;
+  std::vector<int> faces = selected_faces(*doc_->state.selection);
+  const EditState& s = doc_->state;
+  if (faces.empty() && s.active >= 0 && s.active < int(s.handles.size())) faces = *s.handles[s.active].faces;
+  if (faces.empty()) return frame_all();
+  std::vector<Vec3> points;
+  const MeshTopology& t = *doc_->topology;
+  for (int f : faces)
+    for (int k = t.face_begin[f]; k < t.face_begin[f + 1]; ++k) points.push_back(positions()[t.face_vertices[k]]);
+  Vec3 c;
+  double r;
+  bounding_sphere(points, c, r);
+  camera_.frame(to_glm(c), std::max(r, 0.02 * t.bbox_diagonal));
+}
+
+// --- Overlay queries --------------------------------------------------------------------
+
+bool Editor::gizmo_visible(GizmoKind& kind, glm::dvec3& center) const {
+  if (!doc_ || (tools.tool != Tool::Move && tools.tool != Tool::Rotate)) return false;
+  const EditState& s = doc_->state;
+  if (s.active < 0 || s.active >= int(s.handles.size())) return false;
+  const HandleGroup& g = s.handles[s.active];
+  if (!is_draggable(g.mode)) return false;
+  kind = tools.tool == Tool::Move ? GizmoKind::Translate : GizmoKind::Rotate;
+  if (!uses_rotation(g.mode)) kind = GizmoKind::Translate;
+  if (!uses_translation(g.mode)) kind = GizmoKind::Rotate;
+  center = handle_pivot(s.active);
+  return true;
+}
+
+bool Editor::brush_visible() const {
+  return doc_ && (tools.tool == Tool::Paint ||
+                  (tools.tool == Tool::Select && tools.shape == SelectShape::Brush));
+}
+
+glm::dvec3 Editor::handle_pivot(int index) const {
+  const HandleGroup& g = doc_->state.handles[index];
+  if (g.mode != HandleMode::Orientation) return to_glm(g.target_center());
+  // Orientation-only groups translate freely: measure where they are.
+  const MeshTopology& t = *doc_->topology;
+  const std::vector<Vec3>& p = positions();
+  Vec3 sum = Vec3::Zero();
+  double area = 0.0;
+  for (int f : *g.faces) {
+    Vec3 c = Vec3::Zero();
+    for (int k = t.face_begin[f]; k < t.face_begin[f + 1]; ++k) c += p[t.face_vertices[k]];
+    sum += t.rest_geometry.area[f] * c / double(t.degree(f));
+    area += t.rest_geometry.area[f];
+  }
+  return to_glm(area > 0 ? Vec3(sum / area) : g.target_center());
+}
+
+bool Editor::handle_window_position(const std::string& name, double& x, double& y) const {
+  if (!doc_) return false;
+  for (size_t i = 0; i < doc_->state.handles.size(); ++i) {
+    const HandleGroup& g = doc_->state.handles[i];
+    if (g.name != name) continue;
+    // A point on the handle near its pivot: the centroid of the front-facing face closest to
+    // the pivot on screen, so that pressing there grabs the handle.
+    const glm::dvec3 pivot = camera_.project(handle_pivot(int(i)));
+    glm::dvec3 best = pivot;
+    double best_d = std::numeric_limits<double>::infinity();
+    const MeshTopology& t = *doc_->topology;
+    const std::vector<Vec3>& p = positions();
+    const glm::dvec3 eye = camera_.eye();
+    for (int f : *g.faces) {
+      const int b = t.face_begin[f], n = t.degree(f);
+      Vec3 c = Vec3::Zero(), a = Vec3::Zero();
+      for (int k = 0; k < n; ++k) c += p[t.face_vertices[b + k]];
+      c /= double(n);
+      for (int k = 0; k < n; ++k)
+        a += (p[t.face_vertices[b + k]] - c).cross(p[t.face_vertices[b + (k + 1) % n]] - c);
+      if (glm::dot(to_glm(a), to_glm(c) - eye) >= 0.0) continue;  // facing away
+      const glm::dvec3 w = camera_.project(to_glm(c));
+      const double d = glm::length(glm::dvec2(w.x - pivot.x, w.y - pivot.y));
+      if (d < best_d) best_d = d, best = w;
+    }
+    x = viewport_.x + best.x / viewport_.scale;
+    y = viewport_.y + best.y / viewport_.scale;
+    return true;
+  }
+  return false;
+}
+
+// --- Messages ---------------------------------------------------------------------------
+
+void Editor::info(const std::string& text) {
+  messages_.push_back({text, false});
+  if (messages_.size() > 200) messages_.erase(messages_.begin());
+  std::printf("[primo edit] %s\n", text.c_str());
+}
+
+void Editor::error(const std::string& text) {
+  messages_.push_back({text, true});
+  if (messages_.size() > 200) messages_.erase(messages_.begin());
+  error_popup_ = text;
+  std::fprintf(stderr, "[primo edit] error: %s\n", text.c_str());
+}
+
+std::string Editor::take_error_popup() { return std::exchange(error_popup_, std::string()); }
+
+}  // namespace primo::editor

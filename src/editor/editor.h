@@ -1,0 +1,230 @@
+#pragma once
+// The editor without its window: the open document, camera, tools, display settings, the
+// solver thread and file tasks, and everything input does in the viewport (navigation, tool
+// gestures, shortcuts). The GLFW/ImGui application owns one Editor, feeds it input events,
+// calls its commands from menus and panels, and draws what it exposes. Tests drive it the
+// same way with a stand-in Picker instead of the GPU pick buffer.
+
+#include <cstdint>
+#include <functional>
+#include <future>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "camera.h"
+#include "document.h"
+#include "gizmo.h"
+#include "input.h"
+#include "paint.h"
+#include "screen_region.h"
+#include "solver_worker.h"
+
+namespace primo::editor {
+
+enum class Tool { Select, Drag, Move, Rotate, Paint };
+enum class SelectShape { Brush, Box, Lasso };
+const char* tool_label(Tool tool);
+
+struct ToolSettings {
+  Tool tool = Tool::Select;
+  SelectShape shape = SelectShape::Brush;
+  double brush_radius = 32.0;  // viewport pixels (selection and paint brushes)
+  PaintLayer paint_layer = PaintLayer::Height;
+  double paint_height = 0.3;   // the height factor the brush paints (below 1: softer)
+  double paint_width = 0.85;   // the width factor the brush paints (below 1: shrink)
+  bool xray = false;           // selections reach hidden faces too
+};
+
+struct DisplaySettings {
+  bool smooth = true;          // smooth (vertex normals) or flat (face normals) shading
+  bool wireframe = false;      // polygon edges over the surface
+  bool prisms = false;         // the prism layer as wire cages
+  bool heat_map = false;       // joint energy density per face
+  bool paint_overlay = true;   // painted factors in false colour
+};
+
+// The viewport inside the window: origin and size in window coordinates, and framebuffer
+// pixels per window unit (HiDPI).
+struct ViewportRect {
+  double x = 0.0, y = 0.0, width = 1.0, height = 1.0, scale = 1.0;
+};
+
+// Reads face ids and eye depths of the current view (viewport pixels).
+class Picker {
+ public:
+  virtual ~Picker() = default;
+  virtual PickImage read(int x0, int y0, int width, int height) = 0;
+};
+
+class Editor {
+ public:
+  struct Message {
+    std::string text;
+    bool error = false;
+  };
+  enum class Gesture {
+    None, Orbit, Pan, Zoom, SelectBrush, SelectBox, SelectLasso, DragHandle, Gizmo, Paint
+  };
+
+  explicit Editor(std::function<void()> wake_ui = {});
+  ~Editor();
+
+  // --- Files --------------------------------------------------------------------------
+  void open(const std::string& path);   // in the background; errors become messages
+  void adopt(std::unique_ptr<Document> document);
+  void save_mesh(const std::string& path);      // in the background, the latest result
+  void save_scenario(const std::string& path);  // at once
+  bool file_task_running() const { return task_.valid(); }
+  const std::string& file_task_label() const { return task_label_; }
+  double file_task_seconds() const;
+
+  // --- Per frame ------------------------------------------------------------------------
+  // Finishes file tasks, sends edits to the solver, picks up its newest result, animates the
+  // camera. `seconds` is the time since the last frame.
+  void update(double seconds);
+  // Nothing pending: no file task, the solver idle for the latest edit, its result shown.
+  bool settled() const;
+  // The solver result the view should show changed since the last call.
+  bool take_geometry_changed();
+  bool take_overlay_changed();
+
+  // --- Input ----------------------------------------------------------------------------
+  void set_viewport(const ViewportRect& rect);
+  const ViewportRect& viewport() const { return viewport_; }
+  void set_picker(Picker* picker) { picker_ = picker; }
+  // `ui_mouse` / `ui_keyboard`: the UI wants this event (ImGui's capture flags).
+  void handle_event(const InputEvent& event, bool ui_mouse, bool ui_keyboard);
+  void cancel_gesture();
+
+  // --- Commands -------------------------------------------------------------------------
+  void undo();
+  void redo();
+  void select_all();
+  void clear_selection();
+  void invert_selection();
+  void grow_selection();
+  void shrink_selection();
+  void make_handle(HandleMode mode);  // from the selection
+  void delete_handle(int index);
+  void reset_handle(int index);
+  void reset_all_handles();
+  void set_active_handle(int index);
+  void set_handle_mode(int index, HandleMode mode);
+  void frame_all();
+  void frame_selection();  // the selection, else the active handle, else everything
+  void set_tool(Tool tool);
+  // Panels edit document()->state directly, call live_edit() while a widget is active and
+  // commit() when it is released (one undo step per widget interaction).
+  void live_edit();
+  void commit(const std::string& label);
+  void request_quit() { quit_requested_ = true; }
+  bool quit_requested() const { return quit_requested_; }
+  void info(const std::string& text);
+  void error(const std::string& text);
+
+  // --- State ----------------------------------------------------------------------------
+  Document* document() { return doc_.get(); }
+  const Document* document() const { return doc_.get(); }
+  Camera& camera() { return camera_; }
+  const Camera& camera() const { return camera_; }
+  ToolSettings tools;
+  DisplaySettings display;
+  const SolverStatus& solver_status() const { return status_; }
+  std::shared_ptr<const SolverGeometry> geometry() const { return geometry_; }
+  // Deformed vertex positions shown now (rest positions before the first result).
+  const std::vector<Vec3>& positions() const;
+  const std::vector<Message>& messages() const { return messages_; }
+  // The newest error not yet shown in a popup ("" when none).
+  std::string take_error_popup();
+
+  // --- For drawing overlays -------------------------------------------------------------
+  Gesture gesture() const { return gesture_; }
+  glm::dvec2 cursor_pixels() const { return cursor_; }  // viewport pixels
+  bool cursor_in_viewport() const;
+  const std::vector<glm::dvec2>& lasso() const { return lasso_; }
+  glm::dvec2 gesture_start() const { return press_; }
+  int hovered_handle() const { return hovered_handle_; }
+  // The gizmo on the active handle, if the tool shows one.
+  bool gizmo_visible(GizmoKind& kind, glm::dvec3& center) const;
+  GizmoPart gizmo_hover() const { return gizmo_hover_; }
+  GizmoPart gizmo_active() const { return gizmo_ ? gizmo_->part() : GizmoPart::None; }
+  bool brush_visible() const;
+  // World position of a handle's pivot as drawn now.
+  glm::dvec3 handle_pivot(int index) const;
+  // Window coordinates of a handle's pivot (for scripts); false when there is no such handle.
+  bool handle_window_position(const std::string& name, double& x, double& y) const;
+
+  // Frame statistics: time between frames (smoothed) and while dragging a handle.
+  double frame_ms() const { return frame_ms_; }
+  struct DragStats {
+    int frames = 0;
+    double total_ms = 0.0, max_ms = 0.0;
+  };
+  const DragStats& last_drag_stats() const { return drag_stats_; }
+
+ private:
+  void on_mouse_button(const InputEvent& e, bool ui_mouse);
+  void on_cursor(const InputEvent& e);
+  void on_scroll(const InputEvent& e, bool ui_mouse);
+  void on_key(const InputEvent& e);
+  void begin_tool_gesture(int mods);
+  void update_gesture();
+  void end_gesture();
+  void brush_dab();
+  std::vector<int> faces_under(const ScreenShape& shape);
+  int face_at_cursor();
+  void update_hover();
+  void sync_solver();
+  void apply_document(std::unique_ptr<Document> doc);
+  void set_selection(const FaceMask& mask, const std::string& label);
+
+  std::function<void()> wake_ui_;
+  std::unique_ptr<Document> doc_;
+  Camera camera_;
+  ViewportRect viewport_;
+  Picker* picker_ = nullptr;
+  std::unique_ptr<SolverWorker> worker_;
+
+  // Solver bookkeeping.
+  EditState sent_;
+  bool sent_any_ = false;
+  SolverStatus status_;
+  std::shared_ptr<const SolverGeometry> geometry_;
+  std::uint64_t shown_serial_ = 0;
+  bool geometry_changed_ = true, overlay_changed_ = true;
+  DisplaySettings last_display_;
+  ToolSettings last_tools_;
+
+  // File task.
+  std::future<std::function<void()>> task_;  // returns the work to finish on the UI thread
+  std::string task_label_;
+  double task_started_ = 0.0;
+  double clock_ = 0.0;
+
+  // Gesture.
+  Gesture gesture_ = Gesture::None;
+  int gesture_button_ = -1;
+  glm::dvec2 cursor_{-1.0}, press_{0.0}, last_{0.0};
+  std::vector<glm::dvec2> lasso_;
+  EditState gesture_start_state_;
+  int drag_group_ = -1;
+  glm::dvec3 drag_anchor_{0.0};
+  Pose drag_start_pose_;
+  SelectOp select_op_ = SelectOp::Add;
+  bool paint_erase_ = false;
+  std::unique_ptr<GizmoDrag> gizmo_;
+  GizmoPart gizmo_hover_ = GizmoPart::None;
+  int hovered_handle_ = -1;
+  double last_hover_pick_ = -1.0;
+  double last_paint_sync_ = 0.0;
+  int held_mods_ = 0;
+  bool quit_requested_ = false;
+
+  std::vector<Message> messages_;
+  std::string error_popup_;
+  double frame_ms_ = 0.0;
+  DragStats drag_stats_, current_drag_;
+};
+
+}  // namespace primo::editor

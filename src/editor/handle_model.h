@@ -1,0 +1,63 @@
+#pragma once
+// Handle groups as the user sees them: a named set of faces with a mode and a pose. Every
+// mode but Spring becomes a primo::Handle (one rigid group); Spring becomes a primo::Force
+// pulling the faces towards their rest centroids moved by the handle's translation.
+
+#include <Eigen/Geometry>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "mesh_topology.h"
+#include "primo/constraints.h"
+
+namespace primo::editor {
+
+enum class HandleMode {
+  Pose,         // position and orientation prescribed (scenario fix "all")
+  Position,     // centroid prescribed, orientation follows (fix "position")
+  Orientation,  // rotation prescribed, position follows (fix "orientation")
+  Spring,       // a force with a stiffness (scenario "forces")
+  Fixed,        // a fixed region: position and orientation prescribed, never dragged
+};
+
+const char* mode_label(HandleMode mode);
+bool is_draggable(HandleMode mode);  // everything but Fixed
+bool uses_rotation(HandleMode mode);     // Pose, Orientation
+bool uses_translation(HandleMode mode);  // Pose, Position, Spring
+
+// The rigid motion applied to a group's rest pose: x' = R (x - center) + center + translate.
+struct Pose {
+  Vec3 translate = Vec3::Zero();
+  Eigen::Quaterniond rotation = Eigen::Quaterniond::Identity();
+
+  bool is_identity() const {
+    return translate == Vec3::Zero() && rotation.coeffs() == Eigen::Quaterniond::Identity().coeffs();
+  }
+  bool operator==(const Pose& o) const {
+    return translate == o.translate && rotation.coeffs() == o.rotation.coeffs();
+  }
+};
+
+struct HandleGroup {
+  std::string name;
+  std::shared_ptr<const std::vector<int>> faces;  // sorted, never empty
+  HandleMode mode = HandleMode::Pose;
+  double stiffness = 10.0;     // Spring only: the force's stiffness
+  Vec3 center = Vec3::Zero();  // rest area-weighted centroid: the pivot
+  Pose pose;
+  int color = 0;               // palette slot, stable across edits
+
+  RigidTransform transform() const;
+  // Where the pivot is now: center + translate.
+  Vec3 target_center() const { return center + pose.translate; }
+};
+
+// Builds a group for `faces` whose pose matches where those faces are now (`current`
+// vertex positions; the rest points when undeformed), so making a handle never moves the
+// mesh: the rigid motion that best fits the rest vertices onto the current ones, or for a
+// spring the area-weighted displacement of the face centroids. Identity when nothing moved.
+HandleGroup make_handle_group(std::string name, std::vector<int> faces, HandleMode mode,
+                              const MeshTopology& topology, const std::vector<Vec3>& current);
+
+}  // namespace primo::editor

@@ -1,0 +1,112 @@
+#include "mesh_topology.h"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+namespace primo::editor {
+
+MeshTopology build_topology(const Mesh& mesh) {
+  MeshTopology t;
+  t.n_vertices = int(mesh.n_vertices());
+  t.n_faces = int(mesh.n_faces());
+  t.face_begin.reserve(t.n_faces + 1);
+  t.face_begin.push_back(0);
+  for (auto f : mesh.faces()) {
+    for (auto v : f.vertices()) t.face_vertices.push_back(v.idx());
+    t.face_begin.push_back(int(t.face_vertices.size()));
+  }
+
+  // 1. Fan triangles and polygon edges (each undirected edge once: the lower index first).
+  std::vector<std::pair<int, int>> edge_list;
+  for (int f = 0; f < t.n_faces; ++f) {
+    const int b = t.face_begin[f], n = t.degree(f);
+    for (int k = 1; k + 1 < n; ++k) {
+      t.triangles.insert(t.triangles.end(),
+                         {unsigned(t.face_vertices[b]), unsigned(t.face_vertices[b + k]),
+                          unsigned(t.face_vertices[b + k + 1])});
+      t.triangle_face.push_back(f);
+    }
+    for (int k = 0; k < n; ++k) {
+      int a = t.face_vertices[b + k], c = t.face_vertices[b + (k + 1) % n];
+      edge_list.emplace_back(std::min(a, c), std::max(a, c));
+    }
+  }
+  std::sort(edge_list.begin(), edge_list.end());
+  edge_list.erase(std::unique(edge_list.begin(), edge_list.end()), edge_list.end());
+  t.edges.reserve(2 * edge_list.size());
+  for (const auto& [a, c] : edge_list) t.edges.insert(t.edges.end(), {unsigned(a), unsigned(c)});
+
+  // 2. Vertex -> faces (CSR by counting).
+  t.vertex_face_begin.assign(t.n_vertices + 1, 0);
+  for (int v : t.face_vertices) ++t.vertex_face_begin[v + 1];
+  for (int v = 0; v < t.n_vertices; ++v) t.vertex_face_begin[v + 1] += t.vertex_face_begin[v];
+  t.vertex_faces.resize(t.face_vertices.size());
+  std::vector<int> fill(t.vertex_face_begin.begin(), t.vertex_face_begin.end() - 1);
+  for (int f = 0; f < t.n_faces; ++f)
+    for (int k = t.face_begin[f]; k < t.face_begin[f + 1]; ++k)
+      t.vertex_faces[fill[t.face_vertices[k]]++] = f;
+
+  // 3. Rest geometry.
+  t.rest_points.reserve(t.n_vertices);
+  for (auto v : mesh.vertices()) t.rest_points.push_back(mesh.point(v));
+  t.rest_geometry = compute_face_geometry(mesh);
+  if (!t.rest_points.empty()) {
+    t.bbox_min = t.bbox_max = t.rest_points.front();
+    for (const Vec3& p : t.rest_points) {
+      t.bbox_min = t.bbox_min.cwiseMin(p);
+      t.bbox_max = t.bbox_max.cwiseMax(p);
+    }
+  }
+  t.bbox_diagonal = (t.bbox_max - t.bbox_min).norm();
+  return t;
+}
+
+void compute_vertex_normals(const MeshTopology& topology, const std::vector<Vec3>& points,
+                            std::vector<float>& normals) {
+  std::vector<Vec3> sum(topology.n_vertices, Vec3::Zero());
+  for (int f = 0; f < topology.n_faces; ++f) {
+    const int b = topology.face_begin[f], n = topology.degree(f);
+    Vec3 c = Vec3::Zero();
+    for (int k = 0; k < n; ++k) c += points[topology.face_vertices[b + k]];
+    c /= double(n);
+    Vec3 a = Vec3::Zero();
+    for (int k = 0; k < n; ++k)
+      a += (points[topology.face_vertices[b + k]] - c)
+               .cross(points[topology.face_vertices[b + (k + 1) % n]] - c);
+    for (int k = 0; k < n; ++k) sum[topology.face_vertices[b + k]] += a;
+  }
+  normals.resize(3 * size_t(topology.n_vertices));
+  for (int v = 0; v < topology.n_vertices; ++v) {
+    const double len = sum[v].norm();
+    const Vec3 n = len > 0 ? Vec3(sum[v] / len) : Vec3::UnitZ();
+    for (int i = 0; i < 3; ++i) normals[3 * size_t(v) + i] = float(n[i]);
+  }
+}
+
+std::vector<Vec3> face_centroids(const MeshTopology& topology, const std::vector<Vec3>& points) {
+  std::vector<Vec3> c(topology.n_faces, Vec3::Zero());
+  for (int f = 0; f < topology.n_faces; ++f) {
+    for (int k = topology.face_begin[f]; k < topology.face_begin[f + 1]; ++k)
+      c[f] += points[topology.face_vertices[k]];
+    c[f] /= double(topology.degree(f));
+  }
+  return c;
+}
+
+void bounding_sphere(const std::vector<Vec3>& points, Vec3& center, double& radius) {
+  if (points.empty()) {
+    center = Vec3::Zero();
+    radius = 1.0;
+    return;
+  }
+  Vec3 lo = points.front(), hi = points.front();
+  for (const Vec3& p : points) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  center = 0.5 * (lo + hi);
+  radius = std::max(0.5 * (hi - lo).norm(), 1e-9);
+}
+
+}  // namespace primo::editor

@@ -1,0 +1,35 @@
+#include "paint.h"
+
+#include <algorithm>
+#include <map>
+
+namespace primo::editor {
+
+FactorArray paint_factors(const FactorArray& factors, int n_faces, const std::vector<int>& faces,
+                          double value) {
+  std::vector<double> out = factors ? *factors : std::vector<double>(size_t(n_faces), 1.0);
+  for (int f : faces)
+    if (f >= 0 && f < n_faces) out[f] = value;
+  if (std::all_of(out.begin(), out.end(), [](double v) { return v == 1.0; })) return nullptr;
+  return std::make_shared<const std::vector<double>>(std::move(out));
+}
+
+FactorArray& layer_factors(EditState& state, PaintLayer layer) {
+  return layer == PaintLayer::Height ? state.height_factor : state.width_factor;
+}
+
+const FactorArray& layer_factors(const EditState& state, PaintLayer layer) {
+  return layer == PaintLayer::Height ? state.height_factor : state.width_factor;
+}
+
+std::vector<FactorGroup> group_factors(const FactorArray& factors) {
+  std::map<double, std::vector<int>> by_value;
+  if (factors)
+    for (size_t f = 0; f < factors->size(); ++f)
+      if ((*factors)[f] != 1.0) by_value[(*factors)[f]].push_back(int(f));
+  std::vector<FactorGroup> groups;
+  for (auto& [value, faces] : by_value) groups.push_back({value, std::move(faces)});
+  return groups;
+}
+
+}  // namespace primo::editor

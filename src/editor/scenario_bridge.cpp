@@ -1,0 +1,145 @@
+#include "scenario_bridge.h"
+
+#include <cmath>
+#include <filesystem>
+#include <sstream>
+
+#include "paint.h"
+
+namespace primo::editor {
+namespace fs = std::filesystem;
+namespace {
+
+Selection faces_selection(const std::vector<int>& faces) {
+  Selection s;
+  s.kind = Selection::Kind::Faces;
+  s.indices = faces;
+  return s;
+}
+
+std::string mesh_reference(const std::string& mesh_path, const std::string& scenario_path) {
+  std::error_code ec;
+  const fs::path mesh = fs::absolute(mesh_path, ec);
+  if (ec) return mesh_path;
+  const fs::path folder = fs::absolute(scenario_path, ec).parent_path();
+  if (ec) return mesh.string();
+  const fs::path rel = mesh.lexically_normal().lexically_relative(folder.lexically_normal());
+  return rel.empty() ? mesh.string() : rel.generic_string();
+}
+
+std::string value_label(const char* what, double v) {
+  std::ostringstream s;
+  s << what << " x" << v;
+  return s.str();
+}
+
+FactorArray factor_array(const std::vector<double>& factors) {
+  for (double v : factors)
+    if (v != 1.0) return std::make_shared<const std::vector<double>>(factors);
+  return nullptr;
+}
+
+}  // namespace
+
+Scenario export_scenario(const EditState& state, const std::string& mesh_path,
+                         const std::string& scenario_path, const SolverSpec& solver) {
+  Scenario s;
+  s.mesh = mesh_reference(mesh_path, scenario_path);
+  s.prisms.height = state.prisms.height;
+  s.prisms.width = state.prisms.width;
+  s.prisms.normal_blend = state.prisms.normal_blend;
+  s.solver = solver;
+
+  for (const FactorGroup& g : group_factors(state.height_factor)) {
+    RegionSpec r;
+    r.name = value_label("height", g.value);
+    r.select = faces_selection(g.faces);
+    r.height = g.value;
+    s.regions.push_back(std::move(r));
+  }
+  for (const FactorGroup& g : group_factors(state.width_factor)) {
+    RegionSpec r;
+    r.name = value_label("width", g.value);
+    r.select = faces_selection(g.faces);
+    r.width = g.value;
+    s.regions.push_back(std::move(r));
+  }
+
+  for (const HandleGroup& g : state.handles) {
+    if (g.mode == HandleMode::Spring) {
+      ForceSpec f;
+      f.name = g.name;
+      f.select = faces_selection(*g.faces);
+      f.target_offset = g.pose.translate;
+      f.stiffness = g.stiffness;
+      s.forces.push_back(std::move(f));
+      continue;
+    }
+    HandleSpec h;
+    h.name = g.name;
+    h.select = faces_selection(*g.faces);
+    h.fix = g.mode == HandleMode::Position      ? Fix::Position
+            : g.mode == HandleMode::Orientation ? Fix::Orientation
+                                                : Fix::All;
+    const Eigen::AngleAxisd aa(g.pose.rotation.normalized());
+    h.transform.translate = g.pose.translate;
+    if (aa.angle() != 0.0) {
+      h.transform.axis = aa.axis();
+      h.transform.angle_deg = aa.angle() * 180.0 / M_PI;
+    }
+    h.transform.center = g.center;
+    s.handles.push_back(std::move(h));
+  }
+  return s;
+}
+
+EditState import_scenario(const Scenario& scenario, const ResolvedScenario& resolved,
+                          const MeshTopology& topology) {
+  EditState state = initial_edit_state(topology.n_faces);
+  state.prisms.height = scenario.prisms.height;
+  state.prisms.width = scenario.prisms.width;
+  state.prisms.normal_blend = scenario.prisms.normal_blend;
+  state.height_factor = factor_array(resolved.prisms.face_height_factor);
+  state.width_factor = factor_array(resolved.prisms.face_width_factor);
+
+  auto add = [&](HandleGroup g, const std::string& name) {
+    g.name = name.empty() ? "Handle " + std::to_string(state.next_number) : name;
+    ++state.next_number;
+    g.color = state.next_color++;
+    state.handles.push_back(std::move(g));
+  };
+  for (size_t i = 0; i < resolved.handles.size(); ++i) {
+    const Handle& h = resolved.handles[i];
+    const TransformSpec& t = scenario.handles[i].transform;
+    HandleGroup g;
+    g.faces = std::make_shared<const std::vector<int>>(h.faces);
+    g.center = area_weighted_centroid(topology.rest_geometry, h.faces);
+    if (t.angle_deg != 0.0)
+      g.pose.rotation = Eigen::Quaterniond(
+          Eigen::AngleAxisd(t.angle_deg * M_PI / 180.0, t.axis.normalized()));
+    // The file's centre may differ from ours: x' = R (x - c_s) + c_s + t
+    //                                           = R (x - c) + c + t + (I - R)(c_s - c).
+    const Vec3 c_s = t.center ? *t.center : g.center;
+    const Mat3 R = g.pose.rotation.toRotationMatrix();
+    g.pose.translate = t.translate + (c_s - g.center) - R * (c_s - g.center);
+    switch (h.fix) {
+      case Fix::All: g.mode = g.pose.is_identity() ? HandleMode::Fixed : HandleMode::Pose; break;
+      case Fix::Position: g.mode = HandleMode::Position; break;
+      case Fix::Orientation: g.mode = HandleMode::Orientation; break;
+    }
+    add(std::move(g), h.name);
+  }
+  for (const Force& f : resolved.forces) {
+    HandleGroup g;
+    g.faces = std::make_shared<const std::vector<int>>(f.faces);
+    g.center = area_weighted_centroid(topology.rest_geometry, f.faces);
+    g.mode = HandleMode::Spring;
+    g.stiffness = f.stiffness;
+    g.pose.translate = f.target_offset;
+    add(std::move(g), f.name.empty() ? "Spring " + std::to_string(state.next_number) : f.name);
+  }
+  state.active = state.handles.empty() ? -1 : 0;
+  return state;
+}
+
+}  // namespace primo::editor

@@ -1,0 +1,305 @@
+#include "solver_worker.h"
+
+#include <algorithm>
+#include <cmath>
+#include <exception>
+
+#include "energy_map.h"
+
+namespace primo::editor {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// Wall time one batch of iterations should take: short enough that a new drag target is
+// picked up quickly, long enough that exact Newton steps (which need a previous step in
+// the same solve) happen on small meshes.
+constexpr double kBatchSeconds = 0.05;
+constexpr int kMaxBatch = 8;
+
+}  // namespace
+
+SolveMethod interactive_solve_method() { return SolveMethod::Global; }
+
+const char* phase_label(SolverPhase phase) {
+  switch (phase) {
+    case SolverPhase::Idle: return "idle";
+    case SolverPhase::Building: return "building prisms";
+    case SolverPhase::Solving: return "solving";
+    case SolverPhase::Settled: return "settled";
+    case SolverPhase::Stopped: return "stopped (iteration limit)";
+    case SolverPhase::Failed: return "failed";
+  }
+  return "?";
+}
+
+SolverWorker::SolverWorker(std::function<void()> notify) : notify_(std::move(notify)) {
+  status_.phase_start = Clock::now();
+  thread_ = std::thread([this] { run(); });
+}
+
+SolverWorker::~SolverWorker() {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    stop_ = true;
+  }
+  wake_.notify_all();
+  thread_.join();
+}
+
+std::uint64_t SolverWorker::submit_problem(std::shared_ptr<const SolverProblem> problem) {
+  std::uint64_t serial;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    serial = ++serial_;
+    pending_problem_ = std::move(problem);
+    pending_problem_serial_ = serial;
+    pending_targets_.reset();  // the problem carries newer targets
+  }
+  wake_.notify_all();
+  return serial;
+}
+
+std::uint64_t SolverWorker::submit_targets(SolverTargets targets) {
+  std::uint64_t serial;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    serial = ++serial_;
+    pending_targets_ = std::make_unique<SolverTargets>(std::move(targets));
+    pending_targets_serial_ = serial;
+  }
+  wake_.notify_all();
+  return serial;
+}
+
+void SolverWorker::set_outputs(bool energy_map, bool prism_corners) {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (want_energy_ == energy_map && want_prisms_ == prism_corners) return;
+    want_energy_ = energy_map;
+    want_prisms_ = prism_corners;
+    outputs_dirty_ = true;
+  }
+  wake_.notify_all();
+}
+
+SolverStatus SolverWorker::status() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return status_;
+}
+
+std::uint64_t SolverWorker::last_request() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return serial_;
+}
+
+bool SolverWorker::idle_for_latest() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return status_.request_serial == serial_ && !status_.busy() && !pending_problem_ &&
+         !pending_targets_;
+}
+
+bool SolverWorker::wait_idle(double timeout_seconds) const {
+  std::unique_lock<std::mutex> lock(mutex_);
+  return published_.wait_for(lock, std::chrono::duration<double>(timeout_seconds), [&] {
+    return status_.request_serial == serial_ && !status_.busy() && !pending_problem_ &&
+           !pending_targets_;
+  });
+}
+
+void SolverWorker::set_phase(SolverPhase phase, std::string error) {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (status_.phase != phase) status_.phase_start = Clock::now();
+    status_.phase = phase;
+    status_.error = std::move(error);
+  }
+  published_.notify_all();
+  if (notify_) notify_();
+}
+
+void SolverWorker::run() {
+  for (;;) {
+    std::shared_ptr<const SolverProblem> problem;
+    std::unique_ptr<SolverTargets> targets;
+    std::uint64_t problem_serial = 0, targets_serial = 0;
+    bool outputs_changed = false;
+    {
+      std::unique_lock<std::mutex> lock(mutex_);
+      const bool solving = status_.phase == SolverPhase::Solving;
+      wake_.wait(lock, [&] {
+        return stop_ || pending_problem_ || pending_targets_ || outputs_dirty_ || solving;
+      });
+      if (stop_) return;
+      problem = std::move(pending_problem_);
+      problem_serial = pending_problem_serial_;
+      targets = std::move(pending_targets_);
+      targets_serial = pending_targets_serial_;
+      outputs_changed = outputs_dirty_;
+      outputs_dirty_ = false;
+      energy_on_ = want_energy_;
+      prisms_on_ = want_prisms_;
+    }
+    if (problem) {
+      build(*problem);
+      std::lock_guard<std::mutex> lock(mutex_);
+      status_.problem_serial = status_.request_serial = problem_serial;
+    }
+    if (targets && deformer_) {
+      apply(*targets);
+      std::lock_guard<std::mutex> lock(mutex_);
+      status_.request_serial = targets_serial;
+    } else if (targets) {
+      std::lock_guard<std::mutex> lock(mutex_);
+      status_.request_serial = targets_serial;  // nothing to move yet
+    }
+    published_.notify_all();  // the request serials moved on
+    if (!deformer_) {
+      if (status().phase != SolverPhase::Failed) set_phase(SolverPhase::Idle);
+      continue;
+    }
+    if (status().phase == SolverPhase::Solving)
+      step();
+    else if (outputs_changed)
+      publish_geometry();
+  }
+}
+
+void SolverWorker::build(const SolverProblem& problem) {
+  set_phase(SolverPhase::Building);
+  const auto start = Clock::now();
+  try {
+    auto next = std::make_unique<Deformer>(*problem.mesh, problem.inputs.params,
+                                           problem.inputs.handles, problem.inputs.forces);
+    // Keep the current pose across the rebuild when it is the same mesh.
+    if (deformer_ && problem_ && problem_->mesh == problem.mesh)
+      next->set_face_motions(deformer_->face_motions());
+    deformer_ = std::move(next);
+  } catch (const std::exception& e) {
+    set_phase(SolverPhase::Failed, e.what());
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      status_.build_seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    }
+    // The last good deformer (if any) stays, so the view keeps its last result; it must not
+    // be solved against targets of a problem it does not describe.
+    return;
+  }
+  problem_ = std::make_shared<SolverProblem>(problem);
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    status_.build_seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    status_.iterations = 0;
+    status_.progress = 0.0;
+  }
+  first_decrease_ = 0.0;
+  set_phase(SolverPhase::Solving);
+}
+
+void SolverWorker::apply(const SolverTargets& targets) {
+  if (status().phase == SolverPhase::Failed) return;
+  if (targets.handles.size() != deformer_->handles().size() ||
+      targets.forces.size() != deformer_->forces().size())
+    return;  // stale: made for a different set of handles
+  for (size_t h = 0; h < targets.handles.size(); ++h)
+    deformer_->set_handle_transform(int(h), targets.handles[h]);
+  for (size_t f = 0; f < targets.forces.size(); ++f)
+    if (targets.forces[f] != deformer_->forces()[f].target_offset)
+      deformer_->set_force_offset(int(f), targets.forces[f]);
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    status_.iterations = 0;
+    status_.progress = 0.0;
+  }
+  first_decrease_ = 0.0;
+  set_phase(SolverPhase::Solving);
+}
+
+void SolverWorker::step() {
+  SolveOptions options;
+  options.method = interactive_solve_method();
+  options.tolerance = problem_->spec.tolerance;
+  const int done = status().iterations;
+  options.max_iterations = std::max(0, std::min(chunk_, problem_->spec.max_iterations - done));
+  SolveReport report;
+  try {
+    report = deformer_->solve(options);
+  } catch (const std::exception& e) {
+    set_phase(SolverPhase::Failed, e.what());
+    return;
+  }
+  if (report.iterations > 0) {
+    const double per_iteration = report.seconds / report.iterations;
+    chunk_ = std::clamp(int(kBatchSeconds / std::max(per_iteration, 1e-6)), 1, kMaxBatch);
+  }
+  // Convergence estimate: how far the relative decrease has fallen towards the tolerance.
+  double progress = 0.0;
+  if (!report.energies.empty()) {
+    const double before = report.energies.size() > 1 ? report.energies[report.energies.size() - 2]
+                                                     : report.initial_energy;
+    const double decrease = before > 0 ? std::max((before - report.energy) / before, 1e-300) : 0;
+    if (first_decrease_ == 0.0) first_decrease_ = std::max(decrease, 1e-300);
+    const double tol = std::max(problem_->spec.tolerance, 1e-300);
+    if (first_decrease_ > tol && decrease > 0)
+      progress = std::clamp(std::log(first_decrease_ / decrease) / std::log(first_decrease_ / tol),
+                            0.0, 1.0);
+  }
+  SolverPhase next = SolverPhase::Solving;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    status_.energy = report.energy;
+    status_.iterations = done + report.iterations;
+    status_.total_iterations += report.iterations;
+    if (report.iterations > 0) status_.seconds_per_iteration = report.seconds / report.iterations;
+    status_.progress = std::max(status_.progress, progress);
+    if (report.converged)
+      next = SolverPhase::Settled;
+    else if (status_.iterations >= problem_->spec.max_iterations)
+      next = SolverPhase::Stopped;
+    if (next != SolverPhase::Solving) status_.progress = 1.0;
+  }
+  publish_geometry();
+  if (next != SolverPhase::Solving) set_phase(next);
+}
+
+void SolverWorker::publish_geometry() {
+  auto g = std::make_shared<SolverGeometry>();
+  g->positions = deformer_->vertex_positions();
+  g->render_positions.resize(3 * g->positions.size());
+  for (size_t v = 0; v < g->positions.size(); ++v)
+    for (int i = 0; i < 3; ++i) g->render_positions[3 * v + i] = float(g->positions[v][i]);
+  compute_vertex_normals(*problem_->topology, g->positions, g->render_normals);
+
+  if (energy_on_ || prisms_on_) {
+    const std::vector<RigidTransform> motions = deformer_->face_motions();
+    const PrismLayer& layer = deformer_->prisms();
+    if (energy_on_) {
+      const std::vector<double> e = face_joint_energy(layer, motions);
+      g->face_energy.resize(e.size());
+      for (size_t f = 0; f < e.size(); ++f)
+        g->face_energy[f] = float(layer.face_area[f] > 0 ? e[f] / layer.face_area[f] : 0.0);
+      g->energy_scale = robust_maximum(g->face_energy);
+    }
+    if (prisms_on_) {
+      g->prism_corners.resize(6 * layer.corner_point.size());
+      for (int f = 0; f < layer.n_faces(); ++f)
+        for (int k = layer.corner_begin[f]; k < layer.corner_begin[f + 1]; ++k) {
+          const Vec3 bottom = motions[f].apply(layer.corner_point[k] - layer.corner_offset[k]);
+          const Vec3 top = motions[f].apply(layer.corner_point[k] + layer.corner_offset[k]);
+          for (int i = 0; i < 3; ++i) {
+            g->prism_corners[6 * size_t(k) + i] = float(bottom[i]);
+            g->prism_corners[6 * size_t(k) + 3 + i] = float(top[i]);
+          }
+        }
+    }
+  }
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    g->serial = ++geometry_serial_;
+    status_.geometry = std::move(g);
+  }
+  published_.notify_all();
+  if (notify_) notify_();
+}
+
+}  // namespace primo::editor

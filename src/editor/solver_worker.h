@@ -1,0 +1,134 @@
+#pragma once
+// The solver thread. It owns the Deformer (which is not thread-safe); the UI never touches it.
+// The UI submits a problem when the structure changes (handles, modes, prism settings,
+// painted factors: the Deformer is rebuilt, keeping the current pose) and targets when only
+// poses change (latest wins: a drag sends a target per frame and the worker takes the newest).
+// The worker runs a few iterations at a time, warm-started, and publishes a snapshot after
+// each batch: positions, normals, energy, iteration counts, timings and, when asked, the
+// per-face energy heat map and the prism corners. Until the latest request has converged
+// (or hit solver.max_iterations) it keeps iterating; then it sleeps.
+
+#include <chrono>
+#include <condition_variable>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "edit_state.h"
+#include "mesh_topology.h"
+#include "primo/deformer.h"
+#include "primo/scenario.h"
+
+namespace primo::editor {
+
+// The method used for interactive solving. One line to switch (e.g. to a hierarchical solver).
+SolveMethod interactive_solve_method();
+
+struct SolverProblem {
+  std::shared_ptr<const Mesh> mesh;
+  std::shared_ptr<const MeshTopology> topology;
+  DeformationInputs inputs;  // handle transforms and force offsets included
+  SolverSpec spec;           // max_iterations and tolerance of a settle
+};
+
+struct SolverTargets {
+  std::vector<RigidTransform> handles;  // one per engine handle
+  std::vector<Vec3> forces;             // one per engine force
+};
+
+enum class SolverPhase {
+  Idle,      // no problem yet
+  Building,  // making prisms and bodies
+  Solving,   // iterating towards the current targets
+  Settled,   // converged for the latest request
+  Stopped,   // solver.max_iterations reached without converging
+  Failed,    // the problem could not be built; `error` says why
+};
+const char* phase_label(SolverPhase phase);
+
+// Immutable once published; shared with the UI.
+struct SolverGeometry {
+  std::vector<Vec3> positions;        // deformed vertices
+  std::vector<float> render_positions;  // 3 per vertex
+  std::vector<float> render_normals;    // 3 per vertex
+  std::vector<float> face_energy;       // per face energy density (empty unless requested)
+  double energy_scale = 1.0;            // robust maximum of face_energy
+  std::vector<float> prism_corners;     // per corner: bottom xyz, top xyz (empty unless requested)
+  std::uint64_t serial = 0;             // increases with every publication
+};
+
+struct SolverStatus {
+  SolverPhase phase = SolverPhase::Idle;
+  std::string error;
+  std::uint64_t problem_serial = 0;  // latest request this status reflects
+  std::uint64_t request_serial = 0;
+  double energy = 0.0;
+  int iterations = 0;        // since the last request
+  long total_iterations = 0;
+  double seconds_per_iteration = 0.0;
+  double build_seconds = 0.0;
+  double progress = 0.0;     // rough convergence estimate in [0, 1]
+  std::chrono::steady_clock::time_point phase_start;
+  std::shared_ptr<const SolverGeometry> geometry;
+
+  bool busy() const { return phase == SolverPhase::Building || phase == SolverPhase::Solving; }
+};
+
+class SolverWorker {
+ public:
+  // `notify` is called from the worker thread after each publication (e.g. to wake the UI).
+  explicit SolverWorker(std::function<void()> notify = {});
+  ~SolverWorker();
+  SolverWorker(const SolverWorker&) = delete;
+  SolverWorker& operator=(const SolverWorker&) = delete;
+
+  // Each returns the request's serial number.
+  std::uint64_t submit_problem(std::shared_ptr<const SolverProblem> problem);
+  std::uint64_t submit_targets(SolverTargets targets);
+  // What to compute at each publication besides positions and normals.
+  void set_outputs(bool energy_map, bool prism_corners);
+
+  SolverStatus status() const;
+  std::uint64_t last_request() const;
+  // True when the latest request has been fully handled (settled, stopped or failed).
+  bool idle_for_latest() const;
+  // Blocks until idle_for_latest() or the timeout; returns whether it became idle.
+  bool wait_idle(double timeout_seconds) const;
+
+ private:
+  void run();
+  void build(const SolverProblem& problem);
+  void apply(const SolverTargets& targets);
+  void step();
+  void publish_geometry();
+  void set_phase(SolverPhase phase, std::string error = {});
+
+  std::function<void()> notify_;
+  mutable std::mutex mutex_;
+  mutable std::condition_variable wake_;         // worker waits for requests
+  mutable std::condition_variable published_;    // wait_idle waits for progress
+  bool stop_ = false;
+  std::uint64_t serial_ = 0;
+  std::shared_ptr<const SolverProblem> pending_problem_;
+  std::uint64_t pending_problem_serial_ = 0;
+  std::unique_ptr<SolverTargets> pending_targets_;
+  std::uint64_t pending_targets_serial_ = 0;
+  bool want_energy_ = false, want_prisms_ = false, outputs_dirty_ = false;
+  SolverStatus status_;
+
+  // Worker-thread only.
+  std::shared_ptr<const SolverProblem> problem_;
+  std::unique_ptr<Deformer> deformer_;
+  int chunk_ = 1;
+  double first_decrease_ = 0.0;
+  bool energy_on_ = false, prisms_on_ = false;
+  std::uint64_t geometry_serial_ = 0;
+
+  std::thread thread_;
+};
+
+}  // namespace primo::editor

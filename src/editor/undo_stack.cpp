@@ -1,0 +1,40 @@
+#include "undo_stack.h"
+
+#include <algorithm>
+
+namespace primo::editor {
+
+UndoStack::UndoStack(EditState initial, std::size_t limit) : limit_(std::max<std::size_t>(limit, 2)) {
+  reset(std::move(initial));
+}
+
+void UndoStack::reset(EditState initial) {
+  steps_.clear();
+  steps_.push_back({"", std::move(initial)});
+  index_ = 0;
+}
+
+bool UndoStack::push(const std::string& label, const EditState& state) {
+  if (state == current()) return false;
+  steps_.erase(steps_.begin() + index_ + 1, steps_.end());
+  steps_.push_back({label, state});
+  if (steps_.size() > limit_) steps_.erase(steps_.begin());
+  index_ = steps_.size() - 1;
+  return true;
+}
+
+std::string UndoStack::undo_label() const { return can_undo() ? steps_[index_].label : ""; }
+
+std::string UndoStack::redo_label() const { return can_redo() ? steps_[index_ + 1].label : ""; }
+
+const EditState& UndoStack::undo() {
+  if (can_undo()) --index_;
+  return current();
+}
+
+const EditState& UndoStack::redo() {
+  if (can_redo()) ++index_;
+  return current();
+}
+
+}  // namespace primo::editor

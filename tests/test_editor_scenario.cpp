@@ -1,0 +1,144 @@
+// Editor <-> scenario files: what the editor saves, `primo deform` reads back to the same
+// handles, forces and per-face factors, and solves to the same mesh; opening it again gives
+// back the editor's setup.
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <filesystem>
+
+#include "document.h"
+#include "paint.h"
+#include "primo/deformer.h"
+#include "primo/error.h"
+#include "primo/mesh_generators.h"
+#include "primo/mesh_io.h"
+#include "primo/scenario.h"
+#include "scenario_bridge.h"
+#include "test_support.h"
+
+using namespace primo;
+using namespace primo::editor;
+
+namespace {
+
+std::vector<int> faces_where(const MeshTopology& t, double y_min, double y_max) {
+  std::vector<int> faces;
+  for (int f = 0; f < t.n_faces; ++f) {
+    const double y = t.rest_geometry.centroid[f].y();
+    if (y >= y_min && y <= y_max) faces.push_back(f);
+  }
+  return faces;
+}
+
+// A cylinder with a fixed base, a posed top, a position handle, a spring, and painted factors.
+struct EditedCylinder {
+  std::string dir = test::temp_dir();
+  std::unique_ptr<Document> doc;
+  EditedCylinder() {
+    const std::string mesh_path = dir + "/meshes/cyl.obj";
+    std::filesystem::create_directories(dir + "/meshes");
+    save_mesh(make_cylinder(0.25, 1.0, 10, 12, FaceShape::Quads), mesh_path);
+    doc = load_document(mesh_path);
+    const MeshTopology& t = *doc->topology;
+    EditState& s = doc->state;
+    add_handle(s, t, t.rest_points, faces_where(t, 0.0, 0.09), HandleMode::Fixed);
+    add_handle(s, t, t.rest_points, faces_where(t, 0.91, 1.0), HandleMode::Pose);
+    s.handles[1].pose.translate = Vec3(0.2, -0.05, 0.1);
+    s.handles[1].pose.rotation = Eigen::Quaterniond(Eigen::AngleAxisd(0.7, Vec3(1, 0, 1).normalized()));
+    add_handle(s, t, t.rest_points, faces_where(t, 0.5, 0.55), HandleMode::Position);
+    s.handles[2].pose.translate = Vec3(0.05, 0, 0);
+    add_handle(s, t, t.rest_points, faces_where(t, 0.7, 0.75), HandleMode::Spring);
+    s.handles[3].pose.translate = Vec3(0, 0, 0.1);
+    s.handles[3].stiffness = 3.5;
+    s.height_factor = paint_factors(nullptr, t.n_faces, faces_where(t, 0.3, 0.45), 0.4);
+    s.height_factor = paint_factors(s.height_factor, t.n_faces, faces_where(t, 0.6, 0.65), 2.0);
+    s.width_factor = paint_factors(nullptr, t.n_faces, faces_where(t, 0.2, 0.3), 0.9);
+    s.prisms = {0.8, 1.0, 0.25};
+  }
+};
+
+}  // namespace
+
+TEST(EditorScenario, ExportResolvesToTheEditorsInputs) {
+  EditedCylinder s;
+  const std::string path = s.dir + "/setup.json";
+  const Scenario exported = export_scenario(s.doc->state, s.doc->mesh_path, path, s.doc->solver);
+  EXPECT_EQ(exported.mesh, "meshes/cyl.obj") << "mesh written relative to the scenario";
+  EXPECT_EQ(exported.regions.size(), 3u) << "one region per painted value";
+  EXPECT_EQ(exported.handles.size(), 3u);
+  EXPECT_EQ(exported.forces.size(), 1u);
+  test::write_text(path, scenario_to_json(exported));
+
+  const Scenario read = load_scenario(path);
+  const ResolvedScenario r = resolve_scenario(read, *s.doc->mesh);
+  const DeformationInputs in = deformation_inputs(s.doc->state);
+  EXPECT_EQ(r.prisms.height, in.params.height);
+  EXPECT_EQ(r.prisms.normal_blend, in.params.normal_blend);
+  EXPECT_EQ(r.prisms.face_height_factor, in.params.face_height_factor);
+  EXPECT_EQ(r.prisms.face_width_factor, in.params.face_width_factor);
+  ASSERT_EQ(r.handles.size(), in.handles.size());
+  for (size_t h = 0; h < in.handles.size(); ++h) {
+    EXPECT_EQ(r.handles[h].faces, in.handles[h].faces);
+    EXPECT_EQ(r.handles[h].fix, in.handles[h].fix);
+    EXPECT_EQ(r.handles[h].name, in.handles[h].name);
+    EXPECT_LT((r.handles[h].transform.rotation - in.handles[h].transform.rotation).norm(), 1e-14);
+    EXPECT_LT((r.handles[h].transform.translation - in.handles[h].transform.translation).norm(), 1e-14);
+  }
+  ASSERT_EQ(r.forces.size(), 1u);
+  EXPECT_EQ(r.forces[0].faces, in.forces[0].faces);
+  EXPECT_EQ(r.forces[0].target_offset, in.forces[0].target_offset);
+  EXPECT_EQ(r.forces[0].stiffness, 3.5);
+
+  // The same problem: the same solution.
+  Deformer a(*s.doc->mesh, in.params, in.handles, in.forces);
+  Deformer b(*s.doc->mesh, r.prisms, r.handles, r.forces);
+  SolveOptions o;
+  o.max_iterations = 60;
+  a.solve(o);
+  b.solve(o);
+  const std::vector<Vec3> pa = a.vertex_positions(), pb = b.vertex_positions();
+  for (size_t v = 0; v < pa.size(); ++v) ASSERT_LT((pa[v] - pb[v]).norm(), 1e-9);
+}
+
+TEST(EditorScenario, OpeningASavedScenarioGivesBackTheSetup) {
+  EditedCylinder s;
+  const std::string path = s.dir + "/again.json";
+  test::write_text(path, scenario_to_json(export_scenario(s.doc->state, s.doc->mesh_path, path,
+                                                          s.doc->solver)));
+  const std::unique_ptr<Document> again = load_document(path);
+  EXPECT_EQ(again->scenario_path, path);
+  const EditState& a = s.doc->state;
+  const EditState& b = again->state;
+  ASSERT_EQ(a.handles.size(), b.handles.size());
+  for (size_t h = 0; h < a.handles.size(); ++h) {
+    EXPECT_EQ(a.handles[h].name, b.handles[h].name);
+    EXPECT_EQ(a.handles[h].mode, b.handles[h].mode) << "Fixed comes back from fix all + identity";
+    EXPECT_EQ(*a.handles[h].faces, *b.handles[h].faces);
+    EXPECT_LT((a.handles[h].pose.translate - b.handles[h].pose.translate).norm(), 1e-14);
+    EXPECT_LT(a.handles[h].pose.rotation.angularDistance(b.handles[h].pose.rotation), 1e-14);
+  }
+  EXPECT_EQ(*a.height_factor, *b.height_factor);
+  EXPECT_EQ(*a.width_factor, *b.width_factor);
+  EXPECT_TRUE(a.prisms == b.prisms);
+}
+
+TEST(EditorScenario, ShippedScenarioOpens) {
+  const std::unique_ptr<Document> doc = load_document(test::source_path("assets/scenarios/spot-pose.json"));
+  const EditState& s = doc->state;
+  ASSERT_EQ(s.handles.size(), 3u);
+  EXPECT_EQ(s.handles[0].name, "feet");
+  EXPECT_EQ(s.handles[0].mode, HandleMode::Fixed);
+  EXPECT_EQ(s.handles[1].mode, HandleMode::Position);
+  EXPECT_EQ(s.handles[2].mode, HandleMode::Spring);
+  EXPECT_EQ(s.handles[2].stiffness, 2.0);
+  ASSERT_TRUE(s.height_factor);
+  EXPECT_EQ(group_factors(s.height_factor).front().value, 0.4);
+}
+
+TEST(EditorScenario, BrokenFilesThrowErrors) {
+  const std::string dir = test::temp_dir();
+  test::write_text(dir + "/bad.json", "{\"format\": \"primo-scenario/1\"}");
+  EXPECT_THROW(load_document(dir + "/bad.json"), Error);
+  EXPECT_THROW(load_document(dir + "/missing.obj"), Error);
+}

@@ -1,0 +1,244 @@
+// The editor driven like a user, without a window: input events for selecting, making
+// handles, dragging, painting, shortcuts, cancel, undo and redo, with the solver thread
+// running. A stand-in picker finds the face under the cursor from projected centroids.
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <limits>
+#include <thread>
+
+#include "editor.h"
+#include "primo/deformer.h"
+#include "primo/mesh_generators.h"
+
+using namespace primo;
+using namespace primo::editor;
+
+namespace {
+
+// The front-facing face whose centroid projects nearest the pixel (within 12 pixels).
+class CentroidPicker : public Picker {
+ public:
+  explicit CentroidPicker(const Editor& e) : e_(e) {}
+  PickImage read(int x0, int y0, int w, int h) override {
+    PickImage img;
+    img.x0 = x0, img.y0 = y0, img.width = w, img.height = h;
+    img.face.assign(size_t(w) * h, -1);
+    img.depth.assign(size_t(w) * h, std::numeric_limits<float>::infinity());
+    if (w != 1 || h != 1) return img;
+    const MeshTopology& t = *e_.document()->topology;
+    const std::vector<Vec3> c = face_centroids(t, e_.positions());
+    double best = 12.0;
+    for (int f = 0; f < t.n_faces; ++f) {
+      const glm::dvec3 p(c[f].x(), c[f].y(), c[f].z());
+      const glm::dvec3 n(t.rest_geometry.normal[f].x(), t.rest_geometry.normal[f].y(),
+                         t.rest_geometry.normal[f].z());
+      if (glm::dot(n, p - e_.camera().eye()) >= 0) continue;
+      const glm::dvec3 s = e_.camera().project(p);
+      const double d = glm::length(glm::dvec2(s.x - x0, s.y - y0));
+      if (d < best) {
+        best = d;
+        img.face[0] = f;
+        img.depth[0] = float(glm::dot(p - e_.camera().eye(), e_.camera().forward()));
+      }
+    }
+    return img;
+  }
+
+ private:
+  const Editor& e_;
+};
+
+struct Session {
+  Editor editor;
+  CentroidPicker picker{editor};
+  Session() {
+    editor.set_viewport({0, 0, 800, 600, 1.0});
+    editor.set_picker(&picker);
+    editor.adopt(make_document(make_bar(0.2, 1.0, 2, 10), ""));
+  }
+  void event(const InputEvent& e) {
+    editor.handle_event(e, false, false);
+    editor.update(0.016);
+  }
+  void key(int k, int mods = 0) {
+    event(InputEvent::key_event(k, GLFW_PRESS, mods));
+    event(InputEvent::key_event(k, GLFW_RELEASE, mods));
+  }
+  void select_where(double y_min, double y_max) {
+    Document& d = *editor.document();
+    FaceMask m(d.n_faces(), 0);
+    for (int f = 0; f < d.n_faces(); ++f) {
+      const double y = d.topology->rest_geometry.centroid[f].y();
+      m[f] = y >= y_min && y <= y_max;
+    }
+    d.state.selection = std::make_shared<const FaceMask>(m);
+    editor.commit("Select");
+  }
+  bool settle() {
+    for (int i = 0; i < 6000; ++i) {
+      editor.update(0.016);
+      if (editor.settled()) return true;
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    return false;
+  }
+  // Fixed bottom, posed top.
+  void two_handles() {
+    select_where(-1, 0.06);
+    editor.make_handle(HandleMode::Fixed);
+    select_where(0.94, 2);
+    editor.make_handle(HandleMode::Pose);
+  }
+  void drag(const std::string& handle, double dx, double dy, int steps = 8) {
+    double x, y;
+    ASSERT_TRUE(editor.handle_window_position(handle, x, y));
+    event(InputEvent::cursor(x, y));
+    event(InputEvent::mouse(GLFW_MOUSE_BUTTON_LEFT, GLFW_PRESS, 0));
+    for (int k = 1; k <= steps; ++k) event(InputEvent::cursor(x + dx * k / steps, y + dy * k / steps));
+    event(InputEvent::mouse(GLFW_MOUSE_BUTTON_LEFT, GLFW_RELEASE, 0));
+  }
+  double diagonal() const { return editor.document()->topology->bbox_diagonal; }
+};
+
+double max_distance(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
+  double m = 0;
+  for (size_t i = 0; i < a.size(); ++i) m = std::max(m, (a[i] - b[i]).norm());
+  return m;
+}
+
+}  // namespace
+
+TEST(EditorSession, DragIsOneStepAndUndoRestoresTheMesh) {
+  Session s;
+  s.two_handles();
+  ASSERT_EQ(s.editor.document()->state.handles.size(), 2u);
+  EXPECT_EQ(s.editor.tools.tool, Tool::Drag) << "making a handle switches to dragging";
+  const size_t steps = s.editor.document()->history.size();
+
+  s.drag("Handle 2", 80, -30);
+  const Document& d = *s.editor.document();
+  EXPECT_EQ(d.history.size(), steps + 1) << "one drag, one undo step";
+  EXPECT_EQ(d.history.undo_label(), "Drag 'Handle 2'");
+  const Vec3 moved = d.state.handles[1].pose.translate;
+  EXPECT_GT(moved.norm(), 0.05);
+  // The drag moves in the view plane.
+  const glm::dvec3 f = s.editor.camera().forward();
+  EXPECT_LT(std::abs(moved.dot(Vec3(f.x, f.y, f.z))), 1e-9);
+
+  ASSERT_TRUE(s.settle());
+  // What a direct solve of the same setup gives.
+  const DeformationInputs in = deformation_inputs(d.state);
+  Deformer direct(*d.mesh, in.params, in.handles, in.forces);
+  direct.solve(SolveOptions{});
+  EXPECT_LT(max_distance(s.editor.positions(), direct.vertex_positions()), 1e-6 * s.diagonal());
+
+  s.key(GLFW_KEY_Z, GLFW_MOD_CONTROL);
+  EXPECT_TRUE(d.state.handles[1].pose.is_identity());
+  ASSERT_TRUE(s.settle());
+  EXPECT_LT(max_distance(s.editor.positions(), d.topology->rest_points), 1e-6 * s.diagonal());
+  s.key(GLFW_KEY_Z, GLFW_MOD_CONTROL | GLFW_MOD_SHIFT);
+  EXPECT_EQ(d.state.handles[1].pose.translate, moved);
+
+  // Alt+G puts the active handle back at rest, as one step.
+  s.key(GLFW_KEY_G, GLFW_MOD_ALT);
+  EXPECT_TRUE(d.state.handles[1].pose.is_identity());
+  EXPECT_EQ(d.history.undo_label(), "Reset 'Handle 2'");
+}
+
+TEST(EditorSession, RightButtonCancelsADrag) {
+  Session s;
+  s.two_handles();
+  const size_t steps = s.editor.document()->history.size();
+  double x, y;
+  ASSERT_TRUE(s.editor.handle_window_position("Handle 2", x, y));
+  s.event(InputEvent::cursor(x, y));
+  s.event(InputEvent::mouse(GLFW_MOUSE_BUTTON_LEFT, GLFW_PRESS, 0));
+  s.event(InputEvent::cursor(x + 50, y));
+  EXPECT_FALSE(s.editor.document()->state.handles[1].pose.is_identity()) << "live while dragging";
+  s.event(InputEvent::mouse(GLFW_MOUSE_BUTTON_RIGHT, GLFW_PRESS, 0));
+  s.event(InputEvent::mouse(GLFW_MOUSE_BUTTON_LEFT, GLFW_RELEASE, 0));
+  EXPECT_TRUE(s.editor.document()->state.handles[1].pose.is_identity());
+  EXPECT_EQ(s.editor.document()->history.size(), steps);
+}
+
+TEST(EditorSession, FixedRegionsDoNotMoveAndPositionHandlesLetOrientationFollow) {
+  Session s;
+  s.two_handles();
+  s.drag("Fixed 1", 60, 0);  // the fixed base
+  EXPECT_TRUE(s.editor.document()->state.handles[0].pose.is_identity());
+  s.editor.set_handle_mode(1, HandleMode::Position);
+  s.drag("Handle 2", 100, 0);
+  ASSERT_TRUE(s.settle());
+  const Document& d = *s.editor.document();
+  EXPECT_TRUE(d.state.handles[1].pose.rotation.coeffs().isApprox(Eigen::Quaterniond::Identity().coeffs()));
+  // The top cap tilts: its vertices no longer share one height.
+  double lo = 1e9, hi = -1e9;
+  for (int v = 0; v < d.topology->n_vertices; ++v)
+    if (d.topology->rest_points[v].y() > 0.999) {
+      lo = std::min(lo, s.editor.positions()[v].y());
+      hi = std::max(hi, s.editor.positions()[v].y());
+    }
+  EXPECT_GT(hi - lo, 1e-3);
+}
+
+TEST(EditorSession, BrushSelectPaintAndShortcuts) {
+  Session s;
+  Document& d = *s.editor.document();
+  s.key(GLFW_KEY_Q);
+  s.key(GLFW_KEY_C);
+  EXPECT_EQ(s.editor.tools.tool, Tool::Select);
+  EXPECT_EQ(s.editor.tools.shape, SelectShape::Brush);
+  const size_t steps = d.history.size();
+  s.event(InputEvent::cursor(400, 300));
+  s.event(InputEvent::mouse(GLFW_MOUSE_BUTTON_LEFT, GLFW_PRESS, 0));
+  s.event(InputEvent::cursor(420, 310));
+  s.event(InputEvent::mouse(GLFW_MOUSE_BUTTON_LEFT, GLFW_RELEASE, 0));
+  const int brushed = count_selected(*d.state.selection);
+  EXPECT_GT(brushed, 0);
+  EXPECT_EQ(d.history.size(), steps + 1);
+
+  s.key(GLFW_KEY_EQUAL, GLFW_MOD_CONTROL);
+  EXPECT_GT(count_selected(*d.state.selection), brushed);
+  const int grown = count_selected(*d.state.selection);
+  s.key(GLFW_KEY_I, GLFW_MOD_CONTROL);
+  EXPECT_EQ(count_selected(*d.state.selection), d.n_faces() - grown);
+  s.key(GLFW_KEY_A, GLFW_MOD_ALT);
+  EXPECT_EQ(count_selected(*d.state.selection), 0);
+  s.key(GLFW_KEY_A);
+  EXPECT_EQ(count_selected(*d.state.selection), d.n_faces());
+  s.key(GLFW_KEY_A, GLFW_MOD_ALT);
+
+  // Paint stiffness: one stroke, one step, factors where the brush went.
+  s.key(GLFW_KEY_P);
+  const size_t before_paint = d.history.size();
+  s.event(InputEvent::cursor(400, 300));
+  s.event(InputEvent::mouse(GLFW_MOUSE_BUTTON_LEFT, GLFW_PRESS, 0));
+  s.event(InputEvent::cursor(410, 280));
+  s.event(InputEvent::mouse(GLFW_MOUSE_BUTTON_LEFT, GLFW_RELEASE, 0));
+  ASSERT_TRUE(d.state.height_factor);
+  EXPECT_EQ(group_factors(d.state.height_factor).size(), 1u);
+  EXPECT_EQ(group_factors(d.state.height_factor)[0].value, s.editor.tools.paint_height);
+  EXPECT_EQ(d.history.size(), before_paint + 1);
+  EXPECT_EQ(d.history.undo_label(), "Paint stiffness");
+  // Ctrl erases.
+  s.event(InputEvent::mouse(GLFW_MOUSE_BUTTON_LEFT, GLFW_PRESS, GLFW_MOD_CONTROL));
+  s.event(InputEvent::cursor(400, 300));
+  s.event(InputEvent::cursor(410, 280));
+  s.event(InputEvent::mouse(GLFW_MOUSE_BUTTON_LEFT, GLFW_RELEASE, GLFW_MOD_CONTROL));
+  EXPECT_FALSE(d.state.height_factor);
+  ASSERT_TRUE(s.settle());
+  EXPECT_EQ(s.editor.solver_status().phase, SolverPhase::Settled);
+}
+
+TEST(EditorSession, CommandsWithoutAMeshOrSelectionExplainThemselves) {
+  Editor e;
+  e.make_handle(HandleMode::Pose);  // no document: nothing happens
+  e.undo();
+  Session s;
+  s.editor.make_handle(HandleMode::Pose);
+  ASSERT_FALSE(s.editor.messages().empty());
+  EXPECT_TRUE(s.editor.messages().back().error);
+  EXPECT_NE(s.editor.take_error_popup().find("Select faces"), std::string::npos);
+}

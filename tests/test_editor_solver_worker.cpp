@@ -1,0 +1,136 @@
+// The editor's solver thread gives what a direct solve gives, takes the latest targets, and
+// reports setups it cannot build instead of failing.
+
+#include <gtest/gtest.h>
+
+#include "edit_state.h"
+#include "energy_map.h"
+#include "primo/deformer.h"
+#include "primo/mesh_generators.h"
+#include "solver_worker.h"
+
+using namespace primo;
+using namespace primo::editor;
+
+namespace {
+
+struct Bent {
+  std::shared_ptr<const Mesh> mesh =
+      std::make_shared<const Mesh>(make_cylinder(0.25, 1.0, 10, 12, FaceShape::Quads));
+  std::shared_ptr<const MeshTopology> topology = std::make_shared<const MeshTopology>(build_topology(*mesh));
+  EditState state = initial_edit_state(int(mesh->n_faces()));
+  Bent() {
+    std::vector<int> bottom, top;
+    for (int f = 0; f < topology->n_faces; ++f) {
+      const double y = topology->rest_geometry.centroid[f].y();
+      if (y < 0.09) bottom.push_back(f);
+      if (y > 0.91) top.push_back(f);
+    }
+    add_handle(state, *topology, topology->rest_points, bottom, HandleMode::Fixed);
+    add_handle(state, *topology, topology->rest_points, top, HandleMode::Pose);
+  }
+  std::shared_ptr<SolverProblem> problem() const {
+    auto p = std::make_shared<SolverProblem>();
+    p->mesh = mesh;
+    p->topology = topology;
+    p->inputs = deformation_inputs(state);
+    return p;
+  }
+  std::vector<Vec3> direct() const {
+    const DeformationInputs in = deformation_inputs(state);
+    Deformer d(*mesh, in.params, in.handles, in.forces);
+    SolveOptions o;
+    d.solve(o);
+    return d.vertex_positions();
+  }
+};
+
+double max_distance(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
+  double m = 0;
+  for (size_t i = 0; i < a.size(); ++i) m = std::max(m, (a[i] - b[i]).norm());
+  return m;
+}
+
+}  // namespace
+
+TEST(EditorSolverWorker, SettlesWhereADirectSolveEnds) {
+  Bent b;
+  b.state.handles[1].pose.translate = Vec3(0.3, -0.1, 0.0);
+  SolverWorker w;
+  w.submit_problem(b.problem());
+  ASSERT_TRUE(w.wait_idle(60));
+  const SolverStatus s = w.status();
+  EXPECT_EQ(s.phase, SolverPhase::Settled);
+  ASSERT_TRUE(s.geometry);
+  EXPECT_EQ(s.geometry->render_normals.size(), 3 * b.mesh->n_vertices());
+  EXPECT_LT(max_distance(s.geometry->positions, b.direct()), 1e-6 * b.topology->bbox_diagonal);
+}
+
+TEST(EditorSolverWorker, LatestTargetsWinAndBackToRestRestoresTheMesh) {
+  Bent b;
+  SolverWorker w;
+  w.submit_problem(b.problem());
+  for (int i = 1; i <= 5; ++i) {
+    b.state.handles[1].pose.translate = Vec3(0.05 * i, 0.0, 0.02 * i);
+    w.submit_targets({{b.state.handles[0].transform(), b.state.handles[1].transform()}, {}});
+  }
+  ASSERT_TRUE(w.wait_idle(60));
+  EXPECT_LT(max_distance(w.status().geometry->positions, b.direct()), 1e-6 * b.topology->bbox_diagonal);
+  w.submit_targets({{RigidTransform{}, RigidTransform{}}, {}});
+  ASSERT_TRUE(w.wait_idle(60));
+  EXPECT_LT(max_distance(w.status().geometry->positions, b.topology->rest_points),
+            1e-6 * b.topology->bbox_diagonal);
+}
+
+TEST(EditorSolverWorker, RebuildKeepsThePoseAndEnergyMapSumsToTheEnergy) {
+  Bent b;
+  b.state.handles[1].pose.translate = Vec3(0.3, 0.0, 0.0);
+  SolverWorker w;
+  w.set_outputs(true, true);
+  w.submit_problem(b.problem());
+  ASSERT_TRUE(w.wait_idle(60));
+  const SolverStatus first = w.status();
+  // The energy map adds up to the total joint energy (no springs here).
+  double sum = 0;
+  for (int f = 0; f < b.topology->n_faces; ++f)
+    sum += first.geometry->face_energy[f] * b.topology->rest_geometry.area[f];
+  EXPECT_NEAR(sum, first.energy, 1e-6 * first.energy);
+  EXPECT_EQ(first.geometry->prism_corners.size(), 6 * b.topology->face_vertices.size());
+  // A change of stiffness rebuilds the prisms; the solve starts from the current pose, so it
+  // needs few iterations.
+  b.state.prisms.height = 0.9;
+  w.submit_problem(b.problem());
+  ASSERT_TRUE(w.wait_idle(60));
+  EXPECT_EQ(w.status().phase, SolverPhase::Settled);
+  EXPECT_LT(w.status().iterations, first.iterations);
+}
+
+TEST(EditorSolverWorker, ABadSetupFailsWithAMessage) {
+  Bent b;
+  auto p = b.problem();
+  p->inputs.params.face_height_factor = {1.0, 2.0};  // wrong size
+  SolverWorker w;
+  w.submit_problem(p);
+  ASSERT_TRUE(w.wait_idle(60));
+  EXPECT_EQ(w.status().phase, SolverPhase::Failed);
+  EXPECT_FALSE(w.status().error.empty());
+  // A good setup afterwards works.
+  w.submit_problem(b.problem());
+  ASSERT_TRUE(w.wait_idle(60));
+  EXPECT_EQ(w.status().phase, SolverPhase::Settled);
+}
+
+TEST(EditorEnergyMap, SumsToTheDeformerEnergy) {
+  Bent b;
+  b.state.handles[1].pose.rotation = Eigen::Quaterniond(Eigen::AngleAxisd(1.0, Vec3::UnitZ()));
+  const DeformationInputs in = deformation_inputs(b.state);
+  Deformer d(*b.mesh, in.params, in.handles, in.forces);
+  SolveOptions o;
+  o.max_iterations = 3;
+  d.solve(o);
+  const std::vector<double> e = face_joint_energy(d.prisms(), d.face_motions());
+  double sum = 0;
+  for (double v : e) sum += v;
+  EXPECT_NEAR(sum, d.energy(), 1e-9 * d.energy());
+  EXPECT_GT(d.energy(), 0.0);
+}

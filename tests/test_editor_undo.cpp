@@ -1,0 +1,51 @@
+// Editor undo stack: steps, labels, redo branch, limit.
+
+#include <gtest/gtest.h>
+
+#include "undo_stack.h"
+
+using namespace primo::editor;
+
+namespace {
+
+EditState with_height(double h) {
+  EditState s = initial_edit_state(3);
+  s.prisms.height = h;
+  return s;
+}
+
+}  // namespace
+
+TEST(EditorUndo, UndoRedoWithLabels) {
+  UndoStack u(with_height(1.0));
+  EXPECT_FALSE(u.can_undo());
+  EXPECT_TRUE(u.push("height 2", with_height(2.0)));
+  EXPECT_TRUE(u.push("height 3", with_height(3.0)));
+  EXPECT_FALSE(u.push("same", with_height(3.0))) << "no step without a change";
+  EXPECT_EQ(u.undo_label(), "height 3");
+  EXPECT_EQ(u.undo().prisms.height, 2.0);
+  EXPECT_EQ(u.redo_label(), "height 3");
+  EXPECT_EQ(u.undo().prisms.height, 1.0);
+  EXPECT_FALSE(u.can_undo());
+  EXPECT_EQ(u.undo().prisms.height, 1.0);
+  EXPECT_EQ(u.redo().prisms.height, 2.0);
+  // A new step drops the redo branch.
+  EXPECT_TRUE(u.push("height 5", with_height(5.0)));
+  EXPECT_FALSE(u.can_redo());
+  EXPECT_EQ(u.undo().prisms.height, 2.0);
+}
+
+TEST(EditorUndo, ActivatingAHandleIsNoStep) {
+  EditState a = initial_edit_state(3), b = a;
+  b.active = 2;
+  EXPECT_TRUE(a == b);
+}
+
+TEST(EditorUndo, OldestStepsFallOff) {
+  UndoStack u(with_height(0.0), 3);
+  for (int i = 1; i <= 5; ++i) u.push("h", with_height(i));
+  EXPECT_EQ(u.size(), 3u);
+  EXPECT_EQ(u.undo().prisms.height, 4.0);
+  EXPECT_EQ(u.undo().prisms.height, 3.0);
+  EXPECT_FALSE(u.can_undo());
+}
