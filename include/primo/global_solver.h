@@ -43,10 +43,18 @@ struct GlobalSolverTimings {
 
 class GlobalSolver {
  public:
-  enum class Factorization { Supernodal, Simplicial };
+  enum class Factorization {
+    // Simplicial below kSupernodalFromDofs unknowns, supernodal above. Small systems (the
+    // coarse level of the hierarchy) factorize as fast without dense blocks, and without
+    // waking BLAS threads, which on two shared cores costs more than it saves.
+    Automatic,
+    Supernodal,  // dense supernodes through BLAS (OpenBLAS: threaded)
+    Simplicial,  // up-looking, no BLAS
+  };
+  static constexpr int kSupernodalFromDofs = 6000;
 
   explicit GlobalSolver(const RigidSystem& system,
-                        Factorization factorization = Factorization::Supernodal);
+                        Factorization factorization = Factorization::Automatic);
   ~GlobalSolver();
   GlobalSolver(const GlobalSolver&) = delete;
   GlobalSolver& operator=(const GlobalSolver&) = delete;

@@ -192,6 +192,8 @@ void GlobalSolver::Impl::build_pattern() {
 
   supernodal.cholmod().print = 0;
   simplicial.cholmod().print = 0;
+  if (factorization == Factorization::Automatic)
+    factorization = n >= kSupernodalFromDofs ? Factorization::Supernodal : Factorization::Simplicial;
   if (n > 0) {
     if (factorization == Factorization::Supernodal) supernodal.analyzePattern(matrix);
     else simplicial.analyzePattern(matrix);
