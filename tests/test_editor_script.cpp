@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
+
 #include "primo/error.h"
 #include "script.h"
 
@@ -114,4 +116,28 @@ TEST(EditorScript, TimedMovesAndWaits) {
   r.update(0.0, host);
   EXPECT_TRUE(r.failed());
   EXPECT_NE(r.error().find("line 1"), std::string::npos);
+}
+
+TEST(EditorScript, ReportAndWaitFile) {
+  const auto cmds = parse_script("report @top 5 5\nwait-file /tmp/x 3\n", "s");
+  ASSERT_EQ(cmds.size(), 2u);
+  EXPECT_EQ(cmds[0].kind, ScriptCommand::Kind::Report);
+  EXPECT_EQ(cmds[0].handle, "top");
+  EXPECT_EQ(cmds[1].kind, ScriptCommand::Kind::WaitFile);
+  EXPECT_EQ(cmds[1].seconds, 3.0);
+  EXPECT_THROW(parse_script("report @top over 2\n", "s"), Error);
+
+  const std::string flag = testing::TempDir() + "/primo-script-flag";
+  std::remove(flag.c_str());
+  Host host;
+  ScriptPlayer p(parse_script("wait-file " + flag + " 5\necho go\n", "s"));
+  p.update(0.0, host);
+  p.update(1.0, host);
+  EXPECT_TRUE(host.ran.empty());
+  FILE* f = std::fopen(flag.c_str(), "w");
+  ASSERT_NE(f, nullptr);
+  std::fclose(f);
+  p.update(2.0, host);
+  EXPECT_EQ(host.ran, (std::vector<std::string>{"go"}));
+  std::remove(flag.c_str());
 }

@@ -897,6 +897,7 @@ void Editor::error(const std::string& text) {
   messages_.push_back({text, true});
   if (messages_.size() > 200) messages_.erase(messages_.begin());
   error_popup_ = text;
+  ++error_count_;
   std::fprintf(stderr, "[primo edit] error: %s\n", text.c_str());
 }
 

@@ -135,6 +135,8 @@ class Editor {
   // Deformed vertex positions shown now (rest positions before the first result).
   const std::vector<Vec3>& positions() const;
   const std::vector<Message>& messages() const { return messages_; }
+  // Errors reported so far (a script or screenshot run fails when it grows).
+  size_t error_count() const { return error_count_; }
   // The newest error not yet shown in a popup ("" when none).
   std::string take_error_popup();
 
@@ -223,6 +225,7 @@ class Editor {
 
   std::vector<Message> messages_;
   std::string error_popup_;
+  size_t error_count_ = 0;
   double frame_ms_ = 0.0;
   DragStats drag_stats_, current_drag_;
 };

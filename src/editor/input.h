@@ -3,7 +3,9 @@
 // both produce these and push them into the same queue, so a scripted drag runs exactly the
 // code a real one does. Codes and flags are GLFW's (keys, buttons, actions, modifier bits).
 
+#ifndef GLFW_INCLUDE_NONE
 #define GLFW_INCLUDE_NONE
+#endif
 #include <GLFW/glfw3.h>
 
 #include <deque>

@@ -1,6 +1,8 @@
 #include "script.h"
 
 #include <algorithm>
+#include <cstdio>
+#include <filesystem>
 #include <sstream>
 #include <stdexcept>
 
@@ -56,10 +58,10 @@ ScriptCommand parse_line(const std::string& line) {
     if (args.size() > 1) throw std::invalid_argument("wait-settled takes at most a TIMEOUT");
     c.kind = K::WaitSettled;
     c.seconds = args.empty() ? 60.0 : parse_number(args[0]);
-  } else if (word == "move") {
+  } else if (word == "move" || word == "report") {
     all_args();
-    c.kind = K::Move;
-    if (args.size() >= 2 && args[args.size() - 2] == "over") {
+    c.kind = word == "move" ? K::Move : K::Report;
+    if (c.kind == K::Move && args.size() >= 2 && args[args.size() - 2] == "over") {
       c.seconds = parse_number(args.back());
       args.resize(args.size() - 2);
     }
@@ -75,7 +77,7 @@ ScriptCommand parse_line(const std::string& line) {
     }
     const size_t numbers = args.size() - i;
     if (c.anchor == ScriptCommand::Anchor::None ? numbers != 2 : (numbers != 0 && numbers != 2))
-      throw std::invalid_argument("move takes X Y, @HANDLE [DX DY] or center [DX DY]");
+      throw std::invalid_argument(word + " takes X Y, @HANDLE [DX DY] or center [DX DY]");
     if (numbers == 2) {
       c.x = parse_number(args[i]);
       c.y = parse_number(args[i + 1]);
@@ -111,6 +113,12 @@ ScriptCommand parse_line(const std::string& line) {
     c.kind = K::Screenshot;
     c.text = args[0];
     c.with_ui = args.size() == 2;
+  } else if (word == "wait-file") {
+    all_args();
+    if (args.empty() || args.size() > 2) throw std::invalid_argument("wait-file takes PATH [TIMEOUT]");
+    c.kind = K::WaitFile;
+    c.text = args[0];
+    c.seconds = args.size() == 2 ? parse_number(args[1]) : 60.0;
   } else if (word == "quit") {
     all_args();
     if (!args.empty()) throw std::invalid_argument("quit takes no argument");
@@ -226,8 +234,22 @@ bool ScriptPlayer::step(double now, ScriptHost& host) {
       if (phase_ < int(c.text.size()))
         emit(host, InputEvent::character(static_cast<unsigned char>(c.text[phase_])));
       return ++phase_ >= int(c.text.size());
-    case K::Open: case K::SaveMesh: case K::SaveScenario: case K::Screenshot: case K::Echo:
-    case K::Quit:
+    case K::Report: {
+      double x, y;
+      host.locate(c, x, y);
+      std::printf("report %.1f %.1f\n", x, y);
+      std::fflush(stdout);
+      return true;
+    }
+    case K::WaitFile:
+      if (std::filesystem::exists(c.text)) return true;
+      if (elapsed > c.seconds) throw Error(c.text + " did not appear within " + std::to_string(c.seconds) + " s");
+      return false;
+    case K::Screenshot:
+      host.run(c);
+      emitted_ = true;  // taken at the end of this frame: the next command waits for the next
+      return true;
+    case K::Open: case K::SaveMesh: case K::SaveScenario: case K::Echo: case K::Quit:
       host.run(c);
       return true;
   }

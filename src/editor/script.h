@@ -15,8 +15,12 @@
 //   type TEXT                       characters, as typed into a text field
 //   open PATH | save-mesh PATH | save-scenario PATH | screenshot PATH [ui]
 //   echo TEXT                       print a line on stdout
+//   report POSITION                 print "report X Y" (window coordinates) on stdout
+//   wait-file PATH [TIMEOUT]        until the file exists (60 s): lets a test drive real input
+//                                   (xdotool) and tell the script when it is done
 //   quit                            exit (status 0 unless a command failed)
-// Input commands emit at most one event per frame, as a person would; the others run at once.
+// Input commands emit at most one event per frame, as a person would; the others run at once,
+// except that a screenshot ends the frame (it is taken when the frame is drawn).
 
 #include <string>
 #include <vector>
@@ -28,12 +32,13 @@ namespace primo::editor {
 struct ScriptCommand {
   enum class Kind {
     Wait, WaitSettled, Move, Press, Release, Click, Scroll, Key, Hold, Unhold, Type,
-    Open, SaveMesh, SaveScenario, Screenshot, Echo, Quit
+    Open, SaveMesh, SaveScenario, Screenshot, Echo, Report, WaitFile, Quit
   };
   Kind kind = Kind::Wait;
   int line = 0;
   double seconds = 0.0;  // Wait, WaitSettled timeout, Move duration
-  // Move: an absolute position, or an anchor (handle name or the viewport centre) + offset.
+  // Move and Report: an absolute position, or an anchor (handle name or the viewport centre)
+  // plus an offset.
   enum class Anchor { None, Handle, Center } anchor = Anchor::None;
   std::string handle;
   double x = 0.0, y = 0.0;
@@ -59,6 +64,7 @@ class ScriptHost {
   // The solver is idle for the latest edit and the view shows its result.
   virtual bool settled() = 0;
   // Open, SaveMesh, SaveScenario, Screenshot, Echo, Quit. Throws primo::Error on failure.
+  // (Report is printed by the player from locate().)
   virtual void run(const ScriptCommand& command) = 0;
 };
 

@@ -16,6 +16,12 @@ using Clock = std::chrono::steady_clock;
 // the same solve) happen on small meshes.
 constexpr double kBatchSeconds = 0.05;
 constexpr int kMaxBatch = 8;
+// Once no request came for this long, the drag is over: batches get at least kSettleBatch
+// iterations, so that the engine's exact Newton steps (which follow a Gauss-Newton step within
+// one solve) finish the convergence as `primo deform` does. One-iteration Gauss-Newton
+// batches converge only linearly and can stop early on a small, backtracked step.
+constexpr double kDragPauseSeconds = 0.3;
+constexpr int kSettleBatch = 4;
 
 }  // namespace
 
@@ -140,6 +146,10 @@ void SolverWorker::run() {
       energy_on_ = want_energy_;
       prisms_on_ = want_prisms_;
     }
+    if (problem || targets) {
+      last_request_ = Clock::now();
+      confirming_ = false;
+    }
     if (problem) {
       build(*problem);
       std::lock_guard<std::mutex> lock(mutex_);
@@ -220,13 +230,24 @@ void SolverWorker::step() {
   options.method = interactive_solve_method();
   options.tolerance = problem_->spec.tolerance;
   const int done = status().iterations;
-  options.max_iterations = std::max(0, std::min(chunk_, problem_->spec.max_iterations - done));
+  const bool dragging =
+      std::chrono::duration<double>(Clock::now() - last_request_).count() < kDragPauseSeconds;
+  const int batch = dragging ? chunk_ : std::max(chunk_, kSettleBatch);
+  options.max_iterations = std::max(0, std::min(batch, problem_->spec.max_iterations - done));
   SolveReport report;
   try {
     report = deformer_->solve(options);
   } catch (const std::exception& e) {
     set_phase(SolverPhase::Failed, e.what());
     return;
+  }
+  // Converged only in a settling batch, and a stop on the tolerance is confirmed by one more
+  // batch: a small (backtracked) step can come before the minimum, and the warm-started path
+  // of a drag must end where a solve from scratch ends (docs/editor.md).
+  bool converged = report.converged && !dragging;
+  if (converged && report.stop_reason == "tolerance" && !confirming_) {
+    confirming_ = true;
+    converged = false;
   }
   if (report.iterations > 0) {
     const double per_iteration = report.seconds / report.iterations;
@@ -252,7 +273,7 @@ void SolverWorker::step() {
     status_.total_iterations += report.iterations;
     if (report.iterations > 0) status_.seconds_per_iteration = report.seconds / report.iterations;
     status_.progress = std::max(status_.progress, progress);
-    if (report.converged)
+    if (converged)
       next = SolverPhase::Settled;
     else if (status_.iterations >= problem_->spec.max_iterations)
       next = SolverPhase::Stopped;

@@ -124,6 +124,8 @@ class SolverWorker {
   std::shared_ptr<const SolverProblem> problem_;
   std::unique_ptr<Deformer> deformer_;
   int chunk_ = 1;
+  std::chrono::steady_clock::time_point last_request_;
+  bool confirming_ = false;
   double first_decrease_ = 0.0;
   bool energy_on_ = false, prisms_on_ = false;
   std::uint64_t geometry_serial_ = 0;
