@@ -18,5 +18,8 @@ struct Command {
 Command register_deform(CLI::App& app);
 Command register_bench(CLI::App& app);
 Command register_generate(CLI::App& app);
+Command register_edit(CLI::App& app);
+// `primo` without a subcommand: the editor on the bundled example mesh.
+int run_default_editor();
 
 }  // namespace primo::app

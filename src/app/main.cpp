@@ -1,4 +1,4 @@
-// `primo`: headless subcommands of the PriMo deformation tool.
+// `primo`: the PriMo editor (no arguments, or `primo edit`) and the headless subcommands.
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
@@ -10,10 +10,10 @@
 
 int main(int argc, char** argv) {
   CLI::App app{"PriMo: coupled prisms for intuitive surface modeling"};
-  app.require_subcommand(1);
-  const std::vector<primo::app::Command> commands = {primo::app::register_deform(app),
-                                                     primo::app::register_generate(app),
-                                                     primo::app::register_bench(app)};
+  app.require_subcommand(0, 1);
+  const std::vector<primo::app::Command> commands = {
+      primo::app::register_edit(app), primo::app::register_deform(app),
+      primo::app::register_generate(app), primo::app::register_bench(app)};
 
   try {
     app.parse(argc, argv);
@@ -33,5 +33,5 @@ int main(int argc, char** argv) {
     }
     return 1;
   }
-  return 1;
+  return primo::app::run_default_editor();  // no subcommand
 }

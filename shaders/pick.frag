@@ -1,0 +1,15 @@
+#version 330 core
+// Pick pass: the face id and the eye depth (distance along the view direction) per pixel.
+
+in vec3 view_position;
+in vec3 view_normal;
+
+uniform isamplerBuffer triangle_face;
+
+layout(location = 0) out int face_id;
+layout(location = 1) out float eye_depth;
+
+void main() {
+  face_id = texelFetch(triangle_face, gl_PrimitiveID).r;
+  eye_depth = -view_position.z;
+}

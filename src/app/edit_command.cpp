@@ -1,0 +1,43 @@
+// `primo edit [MESH_OR_SCENARIO] [--screenshot OUT.png] [--script FILE]`, and `primo` with no
+// arguments: the interactive editor (docs/editor.md).
+
+#include <CLI/CLI.hpp>
+#include <memory>
+
+#include "app.h"
+#include "commands.h"
+#include "paths.h"
+
+namespace primo::app {
+
+Command register_edit(CLI::App& app) {
+  auto options = std::make_shared<editor::EditorOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "edit", "Open the interactive editor (the default when primo runs without arguments)");
+  cmd->add_option("input", options->input,
+                  "Mesh (.obj .off .ply .stl .om) or scenario (.json) to open; default: the bundled "
+                  "Spot mesh");
+  cmd->add_option("--screenshot", options->screenshot,
+                  "Render until the solve has settled, save the view as PNG and exit");
+  cmd->add_flag("--screenshot-ui", options->screenshot_ui, "Include the panels in the screenshot");
+  cmd->add_option("--script", options->script,
+                  "Play timed input events and commands from a file (docs/editor.md)")
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--width", options->width, "Window width")->check(CLI::Range(320, 8192));
+  cmd->add_option("--height", options->height, "Window height")->check(CLI::Range(240, 8192));
+  cmd->add_option("--timeout", options->timeout, "Seconds a --screenshot run may take")
+      ->check(CLI::PositiveNumber);
+  return {cmd, [options] {
+            editor::EditorOptions o = *options;
+            if (o.input.empty()) o.input = editor::default_mesh_path();
+            return editor::run_editor(o);
+          }};
+}
+
+int run_default_editor() {
+  editor::EditorOptions o;
+  o.input = editor::default_mesh_path();
+  return editor::run_editor(o);
+}
+
+}  // namespace primo::app

@@ -1,0 +1,459 @@
+#include "app.h"
+
+#include <imgui.h>
+#include <imgui_impl_glfw.h>
+#include <imgui_impl_opengl3.h>
+
+#include <chrono>
+#include <cstdlib>
+#include <cstdlib>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <thread>
+
+#include "editor.h"
+#include "face_colors.h"
+#include "gl.h"
+#include "panels.h"
+#include "paths.h"
+#include "primo/error.h"
+#include "renderer.h"
+#include "screenshot.h"
+#include "script.h"
+
+namespace primo::editor {
+namespace {
+
+std::string g_glfw_error;
+
+void glfw_error(int code, const char* description) {
+  char text[64];
+  std::snprintf(text, sizeof text, " (GLFW error 0x%x)", code);
+  g_glfw_error = std::string(description) + text;
+}
+
+void apply_style(float scale) {
+  ImGuiStyle& s = ImGui::GetStyle();
+  ImGui::StyleColorsDark();
+  s.WindowRounding = 0.0f;
+  s.FrameRounding = 4.0f;
+  s.GrabRounding = 4.0f;
+  s.PopupRounding = 6.0f;
+  s.ScrollbarRounding = 6.0f;
+  s.TabRounding = 4.0f;
+  s.WindowBorderSize = 0.0f;
+  s.FrameBorderSize = 0.0f;
+  s.ItemSpacing = ImVec2(8, 6);
+  s.FramePadding = ImVec2(7, 4);
+  s.WindowPadding = ImVec2(10, 10);
+  ImVec4* c = s.Colors;
+  c[ImGuiCol_WindowBg] = ImVec4(0.135f, 0.14f, 0.155f, 0.97f);
+  c[ImGuiCol_PopupBg] = ImVec4(0.15f, 0.155f, 0.17f, 0.98f);
+  c[ImGuiCol_MenuBarBg] = ImVec4(0.11f, 0.115f, 0.13f, 1.0f);
+  c[ImGuiCol_FrameBg] = ImVec4(0.21f, 0.22f, 0.245f, 1.0f);
+  c[ImGuiCol_FrameBgHovered] = ImVec4(0.27f, 0.29f, 0.32f, 1.0f);
+  c[ImGuiCol_FrameBgActive] = ImVec4(0.30f, 0.33f, 0.37f, 1.0f);
+  c[ImGuiCol_Header] = ImVec4(0.22f, 0.24f, 0.28f, 1.0f);
+  c[ImGuiCol_HeaderHovered] = ImVec4(0.26f, 0.36f, 0.52f, 1.0f);
+  c[ImGuiCol_HeaderActive] = ImVec4(0.26f, 0.45f, 0.75f, 1.0f);
+  c[ImGuiCol_Button] = ImVec4(0.23f, 0.25f, 0.29f, 1.0f);
+  c[ImGuiCol_ButtonHovered] = ImVec4(0.28f, 0.40f, 0.60f, 1.0f);
+  c[ImGuiCol_ButtonActive] = ImVec4(0.26f, 0.45f, 0.75f, 1.0f);
+  c[ImGuiCol_SliderGrab] = ImVec4(0.36f, 0.56f, 0.88f, 1.0f);
+  c[ImGuiCol_SliderGrabActive] = ImVec4(0.45f, 0.65f, 0.95f, 1.0f);
+  c[ImGuiCol_CheckMark] = ImVec4(0.45f, 0.68f, 1.0f, 1.0f);
+  c[ImGuiCol_PlotHistogram] = ImVec4(0.36f, 0.6f, 0.95f, 1.0f);
+  c[ImGuiCol_TitleBgActive] = ImVec4(0.16f, 0.2f, 0.28f, 1.0f);
+  s.ScaleAllSizes(scale);
+}
+
+void load_font(float scale) {
+  ImGuiIO& io = ImGui::GetIO();
+  for (const char* path : {"/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf",
+                           "/usr/share/fonts/TTF/DejaVuSans.ttf"}) {
+    if (std::filesystem::exists(path) && io.Fonts->AddFontFromFileTTF(path, 15.0f * scale)) return;
+  }
+  ImFontConfig config;
+  config.SizePixels = 13.0f * scale;
+  io.Fonts->AddFontDefault(&config);
+}
+
+GLFWwindow* create_window(const EditorOptions& options, int samples) {
+  glfwDefaultWindowHints();
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
+  glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+  glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+  glfwWindowHint(GLFW_SAMPLES, samples);
+  return glfwCreateWindow(options.width, options.height, "PriMo", nullptr, nullptr);
+}
+
+bool software_renderer(GLFWwindow* window) {
+  glfwMakeContextCurrent(window);
+  const char* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+  const std::string name = renderer ? renderer : "";
+  glfwMakeContextCurrent(nullptr);
+  return name.find("llvmpipe") != std::string::npos || name.find("softpipe") != std::string::npos ||
+         name.find("swrast") != std::string::npos;
+}
+
+class App : public ScriptHost {
+ public:
+  App(const EditorOptions& options, GLFWwindow* window)
+      : options_(options), window_(window), editor_([] { glfwPostEmptyEvent(); }) {}
+
+  int run();
+
+  // ScriptHost
+  void push_input(const InputEvent& e) override { queue_.push_back(e); }
+  void locate(const ScriptCommand& c, double& x, double& y) override;
+  void cursor(double& x, double& y) override { x = cursor_.x, y = cursor_.y; }
+  bool settled() override { return editor_.settled() && renderer_->has_mesh(); }
+  void run(const ScriptCommand& c) override;
+
+  // GLFW callbacks
+  static App& of(GLFWwindow* w) { return *static_cast<App*>(glfwGetWindowUserPointer(w)); }
+  void install_callbacks();
+
+ private:
+  void feed_imgui();
+  void sync_renderer();
+  void take_screenshot(const ViewportRect& vp, int fb_width, int fb_height, bool with_ui_drawn);
+  void fail(const std::string& message);
+
+  EditorOptions options_;
+  GLFWwindow* window_;
+  Editor editor_;
+  UiState ui_;
+  std::unique_ptr<MeshRenderer> renderer_;
+  std::unique_ptr<ScriptPlayer> script_;
+  InputQueue queue_;
+  glm::dvec2 cursor_{-1.0};
+  bool buttons_[3] = {false, false, false};
+  bool just_pressed_[3] = {false, false, false};
+  const MeshTopology* shown_topology_ = nullptr;
+  int settled_frames_ = 0;
+  bool quit_ = false;
+  int exit_code_ = 0;
+};
+
+void App::install_callbacks() {
+  glfwSetWindowUserPointer(window_, this);
+  glfwSetCursorPosCallback(window_, [](GLFWwindow* w, double x, double y) {
+    of(w).queue_.push_back(InputEvent::cursor(x, y));
+  });
+  glfwSetMouseButtonCallback(window_, [](GLFWwindow* w, int button, int action, int mods) {
+    of(w).queue_.push_back(InputEvent::mouse(button, action, mods));
+  });
+  glfwSetScrollCallback(window_, [](GLFWwindow* w, double dx, double dy) {
+    of(w).queue_.push_back(InputEvent::scroll(dx, dy));
+  });
+  glfwSetKeyCallback(window_, [](GLFWwindow* w, int key, int scancode, int action, int mods) {
+    InputEvent e = InputEvent::key_event(key, action, mods);
+    e.scancode = scancode;
+    of(w).queue_.push_back(e);
+  });
+  glfwSetCharCallback(window_, [](GLFWwindow* w, unsigned c) {
+    of(w).queue_.push_back(InputEvent::character(c));
+  });
+  glfwSetDropCallback(window_, [](GLFWwindow* w, int count, const char** paths) {
+    of(w).queue_.push_back(InputEvent::drop(std::vector<std::string>(paths, paths + count)));
+  });
+  glfwSetWindowFocusCallback(window_, ImGui_ImplGlfw_WindowFocusCallback);
+  glfwSetCursorEnterCallback(window_, ImGui_ImplGlfw_CursorEnterCallback);
+}
+
+// Real and scripted events reach ImGui the same way: keys, characters and wheel through the
+// backend's handlers, pointer and buttons from our own state (set after its NewFrame).
+void App::feed_imgui() {
+  for (const InputEvent& e : queue_) {
+    switch (e.type) {
+      case InputEvent::Type::Key:
+        ImGui_ImplGlfw_KeyCallback(window_, e.key, e.scancode, e.action, e.mods);
+        break;
+      case InputEvent::Type::Char: ImGui_ImplGlfw_CharCallback(window_, e.codepoint); break;
+      case InputEvent::Type::Scroll: ImGui_ImplGlfw_ScrollCallback(window_, e.x, e.y); break;
+      case InputEvent::Type::MouseButton:
+        if (e.button >= 0 && e.button < 3) {
+          buttons_[e.button] = e.action == GLFW_PRESS;
+          if (e.action == GLFW_PRESS) just_pressed_[e.button] = true;
+        }
+        break;
+      case InputEvent::Type::CursorMove: cursor_ = {e.x, e.y}; break;
+      case InputEvent::Type::Drop: break;
+    }
+  }
+}
+
+void App::locate(const ScriptCommand& c, double& x, double& y) {
+  if (c.anchor == ScriptCommand::Anchor::Handle) {
+    if (!editor_.handle_window_position(c.handle, x, y)) throw Error("no handle named '" + c.handle + "'");
+  } else if (c.anchor == ScriptCommand::Anchor::Center) {
+    const ViewportRect& vp = editor_.viewport();
+    x = vp.x + vp.width * 0.5;
+    y = vp.y + vp.height * 0.5;
+  } else {
+    x = y = 0.0;
+  }
+  x += c.x;
+  y += c.y;
+}
+
+void App::run(const ScriptCommand& c) {
+  using K = ScriptCommand::Kind;
+  const size_t errors_before = editor_.error_count();
+  switch (c.kind) {
+    case K::Open: editor_.open(c.text); break;
+    case K::SaveMesh:
+      editor_.save_mesh(c.text);
+      while (editor_.file_task_running()) {  // a script goes on once the file is there
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+        editor_.update(0.0);
+      }
+      break;
+    case K::SaveScenario: editor_.save_scenario(c.text); break;
+    case K::Screenshot:
+      ui_.screenshot_path = c.text;
+      ui_.screenshot_with_ui = c.with_ui;
+      break;
+    case K::Echo: std::printf("%s\n", c.text.c_str()); break;
+    case K::Quit: quit_ = true; break;
+    default: break;
+  }
+  if (editor_.error_count() != errors_before) throw Error(editor_.messages().back().text);
+}
+
+void App::fail(const std::string& message) {
+  std::fprintf(stderr, "primo edit: error: %s\n", message.c_str());
+  exit_code_ = 1;
+  quit_ = true;
+}
+
+void App::sync_renderer() {
+  const Document* doc = editor_.document();
+  if (!doc) return;
+  if (shown_topology_ != doc->topology.get()) {
+    renderer_->set_topology(*doc->topology);
+    shown_topology_ = doc->topology.get();
+  }
+  if (editor_.take_geometry_changed()) {
+    if (const auto g = editor_.geometry()) {
+      renderer_->set_geometry(g->render_positions, g->render_normals);
+      renderer_->set_prism_corners(g->prism_corners);
+    } else {
+      const MeshTopology& t = *doc->topology;
+      std::vector<float> p(3 * t.rest_points.size()), n;
+      for (size_t v = 0; v < t.rest_points.size(); ++v)
+        for (int i = 0; i < 3; ++i) p[3 * v + i] = float(t.rest_points[v][i]);
+      compute_vertex_normals(t, t.rest_points, n);
+      renderer_->set_geometry(p, n);
+      renderer_->set_prism_corners({});
+    }
+  }
+  if (editor_.take_overlay_changed()) {
+    OverlayInputs in;
+    in.state = &doc->state;
+    in.n_faces = doc->n_faces();
+    in.paint_overlay = editor_.display.paint_overlay;
+    in.paint_layer = editor_.tools.tool == Tool::Paint ? editor_.tools.paint_layer
+                     : doc->state.height_factor        ? PaintLayer::Height
+                                                       : PaintLayer::Width;
+    const auto g = editor_.geometry();
+    if (editor_.display.heat_map && g && !g->face_energy.empty()) {
+      in.face_energy = &g->face_energy;
+      in.energy_scale = g->energy_scale;
+    }
+    in.hovered_handle = editor_.hovered_handle();
+    renderer_->set_face_colors(face_overlay_colors(in));
+  }
+}
+
+void App::take_screenshot(const ViewportRect& vp, int fb_width, int fb_height, bool whole_window) {
+  try {
+    if (whole_window) {
+      save_screenshot(ui_.screenshot_path, 0, 0, fb_width, fb_height);
+    } else {
+      const int x = int(vp.x * vp.scale), w = int(vp.width * vp.scale), h = int(vp.height * vp.scale);
+      const int y = fb_height - int(vp.y * vp.scale) - h;
+      save_screenshot(ui_.screenshot_path, x, y, w, h);
+    }
+    editor_.info("Saved a screenshot to " + ui_.screenshot_path);
+  } catch (const std::exception& e) {
+    editor_.error(e.what());
+    if (script_ || !options_.screenshot.empty()) fail(e.what());
+  }
+  ui_.screenshot_path.clear();
+}
+
+int App::run() {
+  install_callbacks();
+  float xscale = 1.0f, yscale = 1.0f;
+  glfwGetWindowContentScale(window_, &xscale, &yscale);
+  load_font(xscale);
+  apply_style(xscale);
+  ImGui_ImplGlfw_InitForOpenGL(window_, false);
+  ImGui_ImplOpenGL3_Init("#version 330 core");
+
+  try {
+    renderer_ = std::make_unique<MeshRenderer>(shader_dir());
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "primo edit: error: %s\n", e.what());
+    return 1;
+  }
+  renderer_->set_camera(&editor_.camera());
+  editor_.set_picker(renderer_.get());
+  if (!options_.script.empty()) {
+    try {
+      std::ifstream in(options_.script);
+      if (!in) throw Error(options_.script + ": cannot read the script");
+      std::stringstream text;
+      text << in.rdbuf();
+      script_ = std::make_unique<ScriptPlayer>(parse_script(text.str(), options_.script));
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "primo edit: error: %s\n", e.what());
+      return 2;
+    }
+  }
+  const bool screenshot_run = !options_.screenshot.empty();
+  if (screenshot_run && !options_.screenshot_ui) ui_.show_panels = false;
+  if (!options_.input.empty()) editor_.open(options_.input);
+
+  double last = glfwGetTime();
+  const double start = last;
+  size_t errors_seen = 0;
+  while (!quit_ && !glfwWindowShouldClose(window_)) {
+    const bool animate = editor_.solver_status().busy() || editor_.file_task_running() || script_ ||
+                         screenshot_run || editor_.gesture() != Editor::Gesture::None ||
+                         editor_.camera().update(0.0);
+    if (animate)
+      glfwPollEvents();
+    else
+      glfwWaitEventsTimeout(0.25);
+    const double now = glfwGetTime();
+    const double dt = now - last;
+    last = now;
+
+    if (script_ && !script_->finished()) {
+      script_->update(now, *this);
+      if (script_->failed()) fail(script_->error());
+    }
+    feed_imgui();
+    ImGui_ImplOpenGL3_NewFrame();
+    ImGui_ImplGlfw_NewFrame();
+    ImGuiIO& io = ImGui::GetIO();
+    io.MousePos = ImVec2(float(cursor_.x), float(cursor_.y));
+    for (int b = 0; b < 3; ++b) {
+      io.MouseDown[b] = buttons_[b] || just_pressed_[b];
+      just_pressed_[b] = false;
+    }
+    ImGui::NewFrame();
+
+    int win_w, win_h, fb_w, fb_h;
+    glfwGetWindowSize(window_, &win_w, &win_h);
+    glfwGetFramebufferSize(window_, &fb_w, &fb_h);
+    const float scale = win_w > 0 ? float(fb_w) / float(win_w) : 1.0f;
+    if (ui_.show_panels && ui_.menu_height == 0.0f) ui_.menu_height = ImGui::GetFrameHeight();
+    const ViewportRect vp = viewport_rect(ui_, float(win_w), float(win_h), scale);
+    editor_.set_viewport(vp);
+
+    for (const InputEvent& e : queue_) {
+      if (!io.WantCaptureKeyboard && handle_app_shortcut(e, editor_, ui_)) continue;
+      editor_.handle_event(e, io.WantCaptureMouse, io.WantCaptureKeyboard);
+    }
+    queue_.clear();
+    editor_.update(dt);
+    sync_renderer();
+    draw_ui(editor_, ui_);
+    if (ui_.quit_requested || editor_.quit_requested()) quit_ = true;
+    if (const Document* doc = editor_.document()) {
+      const std::string& name = doc->scenario_path.empty() ? doc->mesh_path : doc->scenario_path;
+      const std::string title = "PriMo - " + std::filesystem::path(name).filename().string();
+      static std::string shown;
+      if (title != shown) glfwSetWindowTitle(window_, (shown = title).c_str());
+    }
+    ImGui::Render();
+
+    glViewport(0, 0, fb_w, fb_h);
+    glClearColor(0.11f, 0.115f, 0.13f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    const int vx = int(vp.x * scale), vw = int(vp.width * scale), vh = int(vp.height * scale);
+    renderer_->draw(editor_.display, vx, fb_h - int(vp.y * scale) - vh, vw, vh);
+
+    // A --screenshot run: once the view shows a settled solve (two frames in a row).
+    if (screenshot_run && !script_) {
+      if (editor_.error_count() > errors_seen) {
+        fail("could not prepare the screenshot: " + editor_.messages().back().text);
+      } else if (settled() && ++settled_frames_ >= 2) {
+        ui_.screenshot_path = options_.screenshot;
+        ui_.screenshot_with_ui = options_.screenshot_ui;
+        quit_ = true;
+      } else if (now - start > options_.timeout) {
+        fail("the solve did not settle within " + std::to_string(int(options_.timeout)) + " s");
+      }
+    }
+    errors_seen = editor_.error_count();
+    if (!ui_.screenshot_path.empty() && !ui_.screenshot_with_ui) take_screenshot(vp, fb_w, fb_h, false);
+    ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+    if (!ui_.screenshot_path.empty()) take_screenshot(vp, fb_w, fb_h, true);
+    glfwSwapBuffers(window_);
+    if (script_ && script_->finished() && screenshot_run && !quit_) {
+      ui_.show_panels = options_.screenshot_ui;  // then the --screenshot after the script
+      script_.reset();
+    }
+  }
+  const Editor::DragStats& d = editor_.last_drag_stats();
+  if (d.frames > 0)
+    std::printf("[primo edit] last drag: %d frames, %.2f ms mean frame time, %.2f ms max\n", d.frames,
+                d.total_ms / d.frames, d.max_ms);
+  ImGui_ImplOpenGL3_Shutdown();
+  ImGui_ImplGlfw_Shutdown();
+  return exit_code_;
+}
+
+}  // namespace
+
+int run_editor(const EditorOptions& options) {
+  std::setvbuf(stdout, nullptr, _IOLBF, 0);
+  glfwSetErrorCallback(glfw_error);
+  if (!glfwInit()) {
+    std::fprintf(stderr,
+                 "primo edit: error: cannot open a window: %s. The editor needs a display; "
+                 "headless, run it under xvfb-run.\n",
+                 g_glfw_error.c_str());
+    return 1;
+  }
+  // Multisampling smooths edges on a GPU; a software renderer (llvmpipe under Xvfb) pays 3-4x
+  // per frame for it, so there the window is made again without it. PRIMO_MSAA=N forces N.
+  const char* msaa = std::getenv("PRIMO_MSAA");
+  GLFWwindow* window = create_window(options, msaa && *msaa ? std::atoi(msaa) : 4);
+  if (window && !(msaa && *msaa) && software_renderer(window)) {
+    glfwDestroyWindow(window);
+    window = create_window(options, 0);
+  }
+  if (!window) {
+    std::fprintf(stderr, "primo edit: error: cannot create an OpenGL 3.3 core window: %s\n",
+                 g_glfw_error.c_str());
+    glfwTerminate();
+    return 1;
+  }
+  glfwMakeContextCurrent(window);
+  glfwSwapInterval(1);
+  glEnable(GL_MULTISAMPLE);
+
+  IMGUI_CHECKVERSION();
+  ImGui::CreateContext();
+  ImGui::GetIO().IniFilename = nullptr;
+  int code = 1;
+  {
+    App app(options, window);
+    code = app.run();
+  }
+  ImGui::DestroyContext();
+  glfwDestroyWindow(window);
+  glfwTerminate();
+  return code;
+}
+
+}  // namespace primo::editor

@@ -1,0 +1,759 @@
+#include "panels.h"
+
+#include <imgui.h>
+#include <imgui_stdlib.h>
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+
+#include "face_colors.h"
+#include "gizmo_draw.h"
+#include "paths.h"
+
+namespace primo::editor {
+namespace fs = std::filesystem;
+namespace {
+
+const std::vector<std::string> kMeshExtensions = {".obj", ".off", ".ply", ".stl", ".om"};
+
+ImU32 u32(float r, float g, float b, float a = 1.0f) {
+  return ImGui::ColorConvertFloat4ToU32(ImVec4(r, g, b, a));
+}
+
+std::string folder_of(const std::string& path) {
+  if (path.empty()) return fs::current_path().string();
+  return fs::absolute(path).parent_path().string();
+}
+
+std::string stem_of(const std::string& path) {
+  return path.empty() ? "untitled" : fs::path(path).stem().string();
+}
+
+// One widget interaction = one undo step: live while active, committed on release.
+void track_edit(Editor& e, bool changed, const std::string& label) {
+  if (changed) e.live_edit();
+  if (ImGui::IsItemDeactivatedAfterEdit()) e.commit(label);
+}
+
+void help_marker(const char* text) {
+  ImGui::SameLine();
+  ImGui::TextDisabled("(?)");
+  if (ImGui::IsItemHovered()) {
+    ImGui::BeginTooltip();
+    ImGui::PushTextWrapPos(ImGui::GetFontSize() * 28.0f);
+    ImGui::TextUnformatted(text);
+    ImGui::PopTextWrapPos();
+    ImGui::EndTooltip();
+  }
+}
+
+// --- Tool strip ----------------------------------------------------------------------------
+
+void draw_tool_icon(ImDrawList* dl, Tool tool, ImVec2 c, ImU32 col) {
+  switch (tool) {
+    case Tool::Select:  // a dashed selection circle
+      for (int i = 0; i < 12; i += 2)
+        dl->PathArcTo(c, 11.0f, float(i) * 0.5236f, float(i + 1) * 0.5236f, 4), dl->PathStroke(col, 0, 2.0f);
+      dl->AddCircleFilled(c, 2.5f, col);
+      break;
+    case Tool::Drag: {  // a hand-like grab: four arrows
+      const ImVec2 d[4] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
+      for (const ImVec2& v : d) {
+        const ImVec2 tip(c.x + v.x * 12, c.y + v.y * 12);
+        dl->AddLine(c, tip, col, 2.0f);
+        dl->AddTriangleFilled(ImVec2(tip.x + v.x * 3, tip.y + v.y * 3),
+                              ImVec2(tip.x - v.x * 3 - v.y * 4, tip.y - v.y * 3 + v.x * 4),
+                              ImVec2(tip.x - v.x * 3 + v.y * 4, tip.y - v.y * 3 - v.x * 4), col);
+      }
+      break;
+    }
+    case Tool::Move:  // gizmo arrows
+      dl->AddLine(c, ImVec2(c.x + 12, c.y), u32(0.93f, 0.3f, 0.3f), 2.5f);
+      dl->AddLine(c, ImVec2(c.x, c.y - 12), u32(0.45f, 0.85f, 0.3f), 2.5f);
+      dl->AddLine(c, ImVec2(c.x - 8, c.y + 8), u32(0.3f, 0.55f, 0.98f), 2.5f);
+      dl->AddRectFilled(ImVec2(c.x - 2.5f, c.y - 2.5f), ImVec2(c.x + 2.5f, c.y + 2.5f), col);
+      break;
+    case Tool::Rotate:
+      dl->AddCircle(c, 11.0f, u32(0.3f, 0.55f, 0.98f), 24, 2.0f);
+      dl->PathArcTo(c, 11.0f, -0.3f, 1.9f, 12);
+      dl->PathStroke(u32(0.93f, 0.3f, 0.3f), 0, 2.5f);
+      dl->AddTriangleFilled(ImVec2(c.x + 11, c.y - 7), ImVec2(c.x + 6, c.y - 1), ImVec2(c.x + 15, c.y - 1), col);
+      break;
+    case Tool::Paint:  // a brush stroke
+      dl->AddBezierCubic(ImVec2(c.x - 12, c.y + 8), ImVec2(c.x - 4, c.y - 14), ImVec2(c.x + 4, c.y + 14),
+                         ImVec2(c.x + 12, c.y - 8), u32(0.3f, 0.5f, 1.0f), 4.0f);
+      dl->AddCircleFilled(ImVec2(c.x + 12, c.y - 8), 3.0f, col);
+      break;
+  }
+}
+
+void draw_toolbar(Editor& e, UiState& ui, float top, float height) {
+  ImGui::SetNextWindowPos(ImVec2(0, top));
+  ImGui::SetNextWindowSize(ImVec2(ui.toolbar_width, height));
+  ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(6, 8));
+  ImGui::Begin("##tools", nullptr,
+               ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoSavedSettings |
+                   ImGuiWindowFlags_NoBringToFrontOnFocus);
+  struct Item {
+    Tool tool;
+    const char* name;
+    const char* tip;
+  };
+  const Item items[] = {
+      {Tool::Select, "Select (Q)", "Brush, box (B) or lasso (L) over faces. Shift adds, Ctrl removes."},
+      {Tool::Drag, "Drag (G)", "Grab a handle and drag it in the view plane; the mesh follows."},
+      {Tool::Move, "Move (W)", "Gizmo on the active handle: drag an arrow or the centre square. Ctrl snaps."},
+      {Tool::Rotate, "Rotate (E)", "Gizmo on the active handle: drag a ring. Ctrl snaps to 15 degrees."},
+      {Tool::Paint, "Paint (P)", "Paint stiffness (prism height) or width factors. Ctrl erases."},
+  };
+  for (const Item& item : items) {
+    const ImVec2 p = ImGui::GetCursorScreenPos();
+    const ImVec2 size(40, 40);
+    ImGui::PushID(item.name);
+    if (ImGui::InvisibleButton("tool", size)) e.set_tool(item.tool);
+    const bool hovered = ImGui::IsItemHovered();
+    ImGui::PopID();
+    const bool on = e.tools.tool == item.tool;
+    ImDrawList* dl = ImGui::GetWindowDrawList();
+    dl->AddRectFilled(p, ImVec2(p.x + size.x, p.y + size.y),
+                      on ? u32(0.26f, 0.45f, 0.75f) : hovered ? u32(0.3f, 0.32f, 0.36f) : u32(0.2f, 0.21f, 0.24f), 6.0f);
+    draw_tool_icon(dl, item.tool, ImVec2(p.x + size.x * 0.5f, p.y + size.y * 0.5f), u32(0.95f, 0.95f, 0.95f));
+    if (hovered) {
+      ImGui::BeginTooltip();
+      ImGui::TextUnformatted(item.name);
+      ImGui::TextDisabled("%s", item.tip);
+      ImGui::EndTooltip();
+    }
+    ImGui::Dummy(ImVec2(0, 2));
+  }
+  ImGui::End();
+  ImGui::PopStyleVar();
+}
+
+// --- Properties panel -------------------------------------------------------------------
+
+void selection_buttons(Editor& e) {
+  const float w = (ImGui::GetContentRegionAvail().x - 2 * ImGui::GetStyle().ItemSpacing.x) / 3;
+  if (ImGui::Button("All", ImVec2(w, 0))) e.select_all();
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Select all faces (A)");
+  ImGui::SameLine();
+  if (ImGui::Button("None", ImVec2(w, 0))) e.clear_selection();
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Clear the selection (Alt+A)");
+  ImGui::SameLine();
+  if (ImGui::Button("Invert", ImVec2(w, 0))) e.invert_selection();
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Invert the selection (Ctrl+I)");
+  const float w2 = (ImGui::GetContentRegionAvail().x - ImGui::GetStyle().ItemSpacing.x) / 2;
+  if (ImGui::Button("Grow", ImVec2(w2, 0))) e.grow_selection();
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Add the faces around the selection (Ctrl+=)");
+  ImGui::SameLine();
+  if (ImGui::Button("Shrink", ImVec2(w2, 0))) e.shrink_selection();
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Remove the selection's border faces (Ctrl+-)");
+}
+
+void tool_section(Editor& e) {
+  if (!ImGui::CollapsingHeader("Tool", ImGuiTreeNodeFlags_DefaultOpen)) return;
+  ToolSettings& t = e.tools;
+  Document* doc = e.document();
+  ImGui::Text("%s", tool_label(t.tool));
+  switch (t.tool) {
+    case Tool::Select: {
+      int shape = int(t.shape);
+      ImGui::RadioButton("Brush (C)", &shape, int(SelectShape::Brush));
+      ImGui::SameLine();
+      ImGui::RadioButton("Box (B)", &shape, int(SelectShape::Box));
+      ImGui::SameLine();
+      ImGui::RadioButton("Lasso (L)", &shape, int(SelectShape::Lasso));
+      t.shape = SelectShape(shape);
+      if (t.shape == SelectShape::Brush) {
+        float r = float(t.brush_radius);
+        if (ImGui::SliderFloat("Radius", &r, 2.0f, 200.0f, "%.0f px", ImGuiSliderFlags_Logarithmic)) t.brush_radius = r;
+        help_marker("[ and ] change the radius; so does Ctrl + mouse wheel.");
+      }
+      ImGui::Checkbox("X-ray (reach hidden faces)", &t.xray);
+      selection_buttons(e);
+      const int n = doc ? count_selected(*doc->state.selection) : 0;
+      ImGui::Text("%d face%s selected", n, n == 1 ? "" : "s");
+      ImGui::Separator();
+      ImGui::TextDisabled("Make from the selection");
+      const float w = (ImGui::GetContentRegionAvail().x - 2 * ImGui::GetStyle().ItemSpacing.x) / 3;
+      if (ImGui::Button("Handle", ImVec2(w, 0))) e.make_handle(HandleMode::Pose);
+      if (ImGui::IsItemHovered()) ImGui::SetTooltip("A handle you can drag (Ctrl+G)");
+      ImGui::SameLine();
+      if (ImGui::Button("Fixed", ImVec2(w, 0))) e.make_handle(HandleMode::Fixed);
+      if (ImGui::IsItemHovered()) ImGui::SetTooltip("A region that never moves (Ctrl+Shift+G)");
+      ImGui::SameLine();
+      if (ImGui::Button("Spring", ImVec2(w, 0))) e.make_handle(HandleMode::Spring);
+      if (ImGui::IsItemHovered()) ImGui::SetTooltip("A force pulling the faces where you drag it (Ctrl+Alt+G)");
+      break;
+    }
+    case Tool::Drag:
+      ImGui::TextWrapped("Drag a coloured handle; the mesh follows while you drag. Position-only "
+                         "handles let their orientation follow; orientation-only handles turn. "
+                         "Right click or Esc cancels.");
+      break;
+    case Tool::Move:
+    case Tool::Rotate:
+      ImGui::TextWrapped("Click a handle to put the gizmo on it, then drag an %s. Hold Ctrl to snap "
+                         "(%.3g units, 15 degrees). Exact values: Handles panel below.",
+                         t.tool == Tool::Move ? "arrow or the centre square" : "axis ring or the outer ring",
+                         doc ? snap_step_for(doc->topology->bbox_diagonal) : 0.1);
+      break;
+    case Tool::Paint: {
+      int layer = int(t.paint_layer);
+      ImGui::RadioButton("Stiffness", &layer, int(PaintLayer::Height));
+      help_marker("Prism height factor. Below 1 the surface is softer there and bends more; above 1 "
+                  "it is stiffer.");
+      ImGui::SameLine();
+      ImGui::RadioButton("Width", &layer, int(PaintLayer::Width));
+      help_marker("Prism width factor. Below 1 the surface shrinks there, above 1 it grows.");
+      t.paint_layer = PaintLayer(layer);
+      double lo = t.paint_layer == PaintLayer::Height ? 0.05 : 0.5;
+      double hi = t.paint_layer == PaintLayer::Height ? 4.0 : 1.5;
+      double& value = t.paint_layer == PaintLayer::Height ? t.paint_height : t.paint_width;
+      ImGui::SliderScalar("Value", ImGuiDataType_Double, &value, &lo, &hi, "x%.2f",
+                          t.paint_layer == PaintLayer::Height ? ImGuiSliderFlags_Logarithmic : 0);
+      float r = float(t.brush_radius);
+      if (ImGui::SliderFloat("Radius", &r, 2.0f, 200.0f, "%.0f px", ImGuiSliderFlags_Logarithmic)) t.brush_radius = r;
+      ImGui::TextDisabled("Ctrl + drag erases (back to x1)");
+      if (doc && ImGui::Button("Clear this layer")) {
+        layer_factors(doc->state, t.paint_layer) = nullptr;
+        e.commit(t.paint_layer == PaintLayer::Height ? "Clear stiffness" : "Clear width");
+      }
+      break;
+    }
+  }
+}
+
+void handles_section(Editor& e) {
+  Document* doc = e.document();
+  if (!ImGui::CollapsingHeader("Handles", ImGuiTreeNodeFlags_DefaultOpen) || !doc) return;
+  EditState& s = doc->state;
+  if (s.handles.empty()) {
+    ImGui::TextWrapped("No handles yet. Select faces (Q), then make a handle (Ctrl+G) or a fixed "
+                       "region (Ctrl+Shift+G).");
+    return;
+  }
+  if (ImGui::BeginTable("handles", 3, ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerV |
+                                          ImGuiTableFlags_ScrollY,
+                        ImVec2(0, std::min(8.0f, float(s.handles.size()) + 0.6f) * ImGui::GetFrameHeight()))) {
+    ImGui::TableSetupColumn("##c", ImGuiTableColumnFlags_WidthFixed, 14);
+    ImGui::TableSetupColumn("Name");
+    ImGui::TableSetupColumn("Mode", ImGuiTableColumnFlags_WidthFixed, 130);
+    for (size_t i = 0; i < s.handles.size(); ++i) {
+      const HandleGroup& h = s.handles[i];
+      ImGui::TableNextRow();
+      ImGui::TableNextColumn();
+      const Rgb c = handle_color(h);
+      const ImVec2 p = ImGui::GetCursorScreenPos();
+      ImGui::GetWindowDrawList()->AddRectFilled(ImVec2(p.x + 1, p.y + 3), ImVec2(p.x + 12, p.y + 14),
+                                                u32(c[0], c[1], c[2]), 3.0f);
+      ImGui::TableNextColumn();
+      ImGui::PushID(int(i));
+      if (ImGui::Selectable(h.name.c_str(), int(i) == s.active, ImGuiSelectableFlags_SpanAllColumns))
+        e.set_active_handle(int(i));
+      ImGui::PopID();
+      ImGui::TableNextColumn();
+      ImGui::TextDisabled("%s", mode_label(h.mode));
+    }
+    ImGui::EndTable();
+  }
+  if (s.active < 0 || s.active >= int(s.handles.size())) return;
+  HandleGroup& h = s.handles[s.active];
+  ImGui::PushID("active");
+  ImGui::SetNextItemWidth(-60);
+  track_edit(e, ImGui::InputText("Name", &h.name), "Rename handle");
+  int mode = int(h.mode);
+  const char* modes[] = {mode_label(HandleMode::Pose), mode_label(HandleMode::Position),
+                         mode_label(HandleMode::Orientation), mode_label(HandleMode::Spring),
+                         mode_label(HandleMode::Fixed)};
+  ImGui::SetNextItemWidth(-60);
+  if (ImGui::Combo("Mode", &mode, modes, 5)) e.set_handle_mode(s.active, HandleMode(mode));
+  ImGui::TextDisabled("%zu faces", h.faces->size());
+  if (h.mode == HandleMode::Spring) {
+    double lo = 0.0, hi = 100.0;
+    ImGui::SetNextItemWidth(-60);
+    track_edit(e, ImGui::SliderScalar("Stiffness", ImGuiDataType_Double, &h.stiffness, &lo, &hi, "%.2f",
+                                      ImGuiSliderFlags_Logarithmic),
+               "Spring stiffness");
+  }
+  if (h.mode != HandleMode::Fixed) {
+    const float speed = float(0.002 * doc->topology->bbox_diagonal);
+    if (uses_translation(h.mode)) {
+      ImGui::SetNextItemWidth(-60);
+      track_edit(e, ImGui::DragScalarN(h.mode == HandleMode::Spring ? "Pull" : "Move", ImGuiDataType_Double,
+                                       h.pose.translate.data(), 3, speed, nullptr, nullptr, "%.4f"),
+                 "Move '" + h.name + "'");
+    }
+    if (uses_rotation(h.mode)) {
+      Eigen::AngleAxisd aa(h.pose.rotation);
+      double angle = aa.angle() * 180.0 / M_PI;
+      Vec3 axis = aa.angle() != 0.0 ? aa.axis() : Vec3::UnitY();
+      ImGui::SetNextItemWidth(-60);
+      bool changed = ImGui::DragScalarN("Axis", ImGuiDataType_Double, axis.data(), 3, 0.01f, nullptr,
+                                        nullptr, "%.3f");
+      const bool axis_done = ImGui::IsItemDeactivatedAfterEdit();
+      ImGui::SetNextItemWidth(-60);
+      const double amin = -360, amax = 360;
+      changed |= ImGui::DragScalar("Angle", ImGuiDataType_Double, &angle, 0.5f, &amin, &amax, "%.2f deg");
+      const bool angle_done = ImGui::IsItemDeactivatedAfterEdit();
+      if (changed && axis.norm() > 1e-12) {
+        h.pose.rotation = Eigen::Quaterniond(Eigen::AngleAxisd(angle * M_PI / 180.0, axis.normalized()));
+        e.live_edit();
+      }
+      if (axis_done || angle_done) e.commit("Rotate '" + h.name + "'");
+    }
+  }
+  const float w = (ImGui::GetContentRegionAvail().x - 2 * ImGui::GetStyle().ItemSpacing.x) / 3;
+  if (ImGui::Button("Reset", ImVec2(w, 0))) e.reset_handle(s.active);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Back to the rest pose (Alt+G)");
+  ImGui::SameLine();
+  if (ImGui::Button("Frame", ImVec2(w, 0))) e.frame_selection();
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Frame the handle (F, with nothing selected)");
+  ImGui::SameLine();
+  if (ImGui::Button("Delete", ImVec2(w, 0))) e.delete_handle(s.active);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Delete the handle (Del or X)");
+  if (ImGui::Button("Reset all handles", ImVec2(-1, 0))) e.reset_all_handles();
+  ImGui::PopID();
+}
+
+void prisms_section(Editor& e) {
+  Document* doc = e.document();
+  if (!ImGui::CollapsingHeader("Material (prisms)", ImGuiTreeNodeFlags_DefaultOpen) || !doc) return;
+  PrismSettings& p = doc->state.prisms;
+  double lo = 0.0, hi = 3.0;
+  ImGui::SetNextItemWidth(-90);
+  track_edit(e, ImGui::SliderScalar("Height", ImGuiDataType_Double, &p.height, &lo, &hi, "%.3f"),
+             "Prism height");
+  help_marker("Half-thickness of the prism layer in mean edge lengths: thicker is stiffer against "
+              "bending; 0 is a membrane.");
+  double wlo = 0.5, whi = 1.5;
+  ImGui::SetNextItemWidth(-90);
+  track_edit(e, ImGui::SliderScalar("Width", ImGuiDataType_Double, &p.width, &wlo, &whi, "%.3f"),
+             "Prism width");
+  help_marker("Scale of every prism about its face centre: below 1 the surface shrinks, above 1 "
+              "it grows.");
+  double blo = -0.5, bhi = 1.5;
+  ImGui::SetNextItemWidth(-90);
+  track_edit(e, ImGui::SliderScalar("Shell/plate", ImGuiDataType_Double, &p.normal_blend, &blo, &bhi, "%.2f"),
+             "Shell/plate blend");
+  help_marker("0: thin shell (prisms extruded along vertex normals); 1: thin plate (face normals); "
+              "below 0 enhances detail.");
+  if (ImGui::Button("Defaults")) {
+    p = PrismSettings{};
+    e.commit("Default material");
+  }
+}
+
+void display_section(Editor& e) {
+  if (!ImGui::CollapsingHeader("Display", ImGuiTreeNodeFlags_DefaultOpen)) return;
+  DisplaySettings& d = e.display;
+  int smooth = d.smooth ? 1 : 0;
+  ImGui::RadioButton("Smooth", &smooth, 1);
+  ImGui::SameLine();
+  ImGui::RadioButton("Flat (5)", &smooth, 0);
+  d.smooth = smooth == 1;
+  ImGui::Checkbox("Wireframe (4)", &d.wireframe);
+  ImGui::SameLine(ImGui::GetContentRegionAvail().x * 0.5f);
+  ImGui::Checkbox("Prisms (6)", &d.prisms);
+  ImGui::Checkbox("Energy heat map (7)", &d.heat_map);
+  ImGui::SameLine(ImGui::GetContentRegionAvail().x * 0.5f);
+  ImGui::Checkbox("Paint colours (8)", &d.paint_overlay);
+  if (d.heat_map) {
+    const auto g = e.geometry();
+    ImDrawList* dl = ImGui::GetWindowDrawList();
+    const ImVec2 p = ImGui::GetCursorScreenPos();
+    const float w = ImGui::GetContentRegionAvail().x, h = 10;
+    for (int i = 0; i < 64; ++i) {
+      const Rgb c = heat_color(i / 63.0);
+      dl->AddRectFilled(ImVec2(p.x + w * i / 64, p.y), ImVec2(p.x + w * (i + 1) / 64 + 1, p.y + h),
+                        u32(c[0], c[1], c[2]));
+    }
+    ImGui::Dummy(ImVec2(w, h));
+    ImGui::TextDisabled("joint energy per area: 0 .. %.3g", g && !g->face_energy.empty() ? g->energy_scale : 0.0);
+  }
+}
+
+void solver_section(Editor& e) {
+  if (!ImGui::CollapsingHeader("Solver", ImGuiTreeNodeFlags_DefaultOpen)) return;
+  const SolverStatus& st = e.solver_status();
+  const ImVec4 col = st.phase == SolverPhase::Failed    ? ImVec4(1.0f, 0.45f, 0.4f, 1)
+                     : st.phase == SolverPhase::Settled ? ImVec4(0.5f, 0.9f, 0.5f, 1)
+                     : st.phase == SolverPhase::Stopped ? ImVec4(1.0f, 0.8f, 0.3f, 1)
+                                                        : ImVec4(0.9f, 0.9f, 0.9f, 1);
+  ImGui::TextColored(col, "%s", phase_label(st.phase));
+  if (st.phase == SolverPhase::Failed) ImGui::TextWrapped("%s", st.error.c_str());
+  ImGui::ProgressBar(float(st.progress), ImVec2(-1, 0), st.busy() ? "converging" : "");
+  ImGui::Text("Energy %.6g", st.energy);
+  ImGui::Text("Iterations %d (total %ld)", st.iterations, st.total_iterations);
+  ImGui::Text("%.1f ms per iteration, build %.0f ms", 1000.0 * st.seconds_per_iteration, 1000.0 * st.build_seconds);
+  ImGui::Text("Frame %.1f ms (%.0f fps)", e.frame_ms(), e.frame_ms() > 0 ? 1000.0 / e.frame_ms() : 0.0);
+  const Editor::DragStats& d = e.last_drag_stats();
+  if (d.frames > 0)
+    ImGui::TextDisabled("Last drag: %d frames, %.1f ms mean, %.1f ms max", d.frames, d.total_ms / d.frames, d.max_ms);
+}
+
+void draw_properties(Editor& e, UiState& ui, float top, float height) {
+  const ImVec2 display = ImGui::GetIO().DisplaySize;
+  ImGui::SetNextWindowPos(ImVec2(display.x - ui.panel_width, top));
+  ImGui::SetNextWindowSize(ImVec2(ui.panel_width, height));
+  ImGui::Begin("Properties", nullptr,
+               ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
+                   ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoBringToFrontOnFocus |
+                   ImGuiWindowFlags_NoTitleBar);
+  if (const Document* doc = e.document()) {
+    const std::string& name = doc->scenario_path.empty() ? doc->mesh_path : doc->scenario_path;
+    ImGui::TextUnformatted(fs::path(name).filename().string().c_str());
+    ImGui::TextDisabled("%d vertices, %d faces", doc->topology->n_vertices, doc->n_faces());
+  } else {
+    ImGui::TextDisabled("No mesh: File > Open (Ctrl+O) or drop a file here");
+  }
+  tool_section(e);
+  handles_section(e);
+  prisms_section(e);
+  display_section(e);
+  solver_section(e);
+  ImGui::End();
+}
+
+// --- Menu, status, progress, help -------------------------------------------------------
+
+void draw_menu(Editor& e, UiState& ui) {
+  if (!ImGui::BeginMainMenuBar()) return;
+  ui.menu_height = ImGui::GetWindowSize().y;
+  Document* doc = e.document();
+  if (ImGui::BeginMenu("File")) {
+    if (ImGui::MenuItem("Open mesh or scenario...", "Ctrl+O")) ask_open(e, ui);
+    if (ImGui::MenuItem("Open the example (Spot)")) e.open(default_mesh_path());
+    ImGui::Separator();
+    if (ImGui::MenuItem("Save scenario", "Ctrl+S", false, doc != nullptr)) {
+      if (doc->scenario_path.empty())
+        ask_save_scenario(e, ui);
+      else
+        e.save_scenario(doc->scenario_path);
+    }
+    if (ImGui::MenuItem("Save scenario as...", "Ctrl+Shift+S", false, doc != nullptr)) ask_save_scenario(e, ui);
+    if (ImGui::MenuItem("Export deformed mesh...", "Ctrl+E", false, doc != nullptr)) ask_save_mesh(e, ui);
+    if (ImGui::MenuItem("Screenshot...", "F12", false, doc != nullptr)) ask_screenshot(e, ui);
+    ImGui::Separator();
+    if (ImGui::MenuItem("Quit", "Ctrl+Q")) ui.quit_requested = true;
+    ImGui::EndMenu();
+  }
+  if (ImGui::BeginMenu("Edit")) {
+    const std::string undo = doc && doc->history.can_undo() ? "Undo " + doc->history.undo_label() : "Undo";
+    const std::string redo = doc && doc->history.can_redo() ? "Redo " + doc->history.redo_label() : "Redo";
+    if (ImGui::MenuItem(undo.c_str(), "Ctrl+Z", false, doc && doc->history.can_undo())) e.undo();
+    if (ImGui::MenuItem(redo.c_str(), "Ctrl+Shift+Z", false, doc && doc->history.can_redo())) e.redo();
+    ImGui::Separator();
+    if (ImGui::MenuItem("Select all", "A")) e.select_all();
+    if (ImGui::MenuItem("Select none", "Alt+A")) e.clear_selection();
+    if (ImGui::MenuItem("Invert selection", "Ctrl+I")) e.invert_selection();
+    if (ImGui::MenuItem("Grow selection", "Ctrl+=")) e.grow_selection();
+    if (ImGui::MenuItem("Shrink selection", "Ctrl+-")) e.shrink_selection();
+    ImGui::Separator();
+    if (ImGui::MenuItem("Handle from selection", "Ctrl+G")) e.make_handle(HandleMode::Pose);
+    if (ImGui::MenuItem("Fixed region from selection", "Ctrl+Shift+G")) e.make_handle(HandleMode::Fixed);
+    if (ImGui::MenuItem("Spring from selection", "Ctrl+Alt+G")) e.make_handle(HandleMode::Spring);
+    const bool active = doc && doc->state.active >= 0;
+    if (ImGui::MenuItem("Reset active handle", "Alt+G", false, active)) e.reset_handle(doc->state.active);
+    if (ImGui::MenuItem("Reset all handles", "Alt+Shift+G", false, doc != nullptr)) e.reset_all_handles();
+    if (ImGui::MenuItem("Delete active handle", "Del", false, active)) e.delete_handle(doc->state.active);
+    ImGui::EndMenu();
+  }
+  if (ImGui::BeginMenu("View")) {
+    if (ImGui::MenuItem("Frame all", "Home")) e.frame_all();
+    if (ImGui::MenuItem("Frame selection", "F")) e.frame_selection();
+    if (ImGui::MenuItem("Front", "Numpad 1")) e.camera().view_preset(ViewPreset::Front);
+    if (ImGui::MenuItem("Right", "Numpad 3")) e.camera().view_preset(ViewPreset::Right);
+    if (ImGui::MenuItem("Top", "Numpad 7")) e.camera().view_preset(ViewPreset::Top);
+    bool ortho = e.camera().orthographic();
+    if (ImGui::MenuItem("Orthographic", "Numpad 5", &ortho)) e.camera().set_orthographic(ortho);
+    ImGui::Separator();
+    ImGui::MenuItem("Smooth shading", "5", &e.display.smooth);
+    ImGui::MenuItem("Wireframe", "4", &e.display.wireframe);
+    ImGui::MenuItem("Prism layer", "6", &e.display.prisms);
+    ImGui::MenuItem("Energy heat map", "7", &e.display.heat_map);
+    ImGui::MenuItem("Paint colours", "8", &e.display.paint_overlay);
+    ImGui::Separator();
+    ImGui::MenuItem("Panels", "F10", &ui.show_panels);
+    ImGui::EndMenu();
+  }
+  if (ImGui::BeginMenu("Help")) {
+    if (ImGui::MenuItem("Controls", "F1")) ui.show_help = true;
+    ImGui::EndMenu();
+  }
+  ImGui::EndMainMenuBar();
+}
+
+void draw_status(Editor& e, UiState& ui) {
+  const ImVec2 display = ImGui::GetIO().DisplaySize;
+  ImGui::SetNextWindowPos(ImVec2(0, display.y - ui.status_height));
+  ImGui::SetNextWindowSize(ImVec2(display.x, ui.status_height));
+  ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(8, 4));
+  ImGui::Begin("##status", nullptr, ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove |
+                                        ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoBringToFrontOnFocus);
+  if (!e.messages().empty()) {
+    const Editor::Message& m = e.messages().back();
+    if (m.error)
+      ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.4f, 1), "%s", m.text.c_str());
+    else
+      ImGui::TextUnformatted(m.text.c_str());
+  } else {
+    ImGui::TextDisabled("F1: controls");
+  }
+  const SolverStatus& st = e.solver_status();
+  char right[160];
+  std::snprintf(right, sizeof right, "%s | %s | E %.4g | %.1f ms", tool_label(e.tools.tool),
+                phase_label(st.phase), st.energy, e.frame_ms());
+  ImGui::SameLine(std::max(ImGui::GetCursorPosX() + 20, display.x - ImGui::CalcTextSize(right).x - 16));
+  ImGui::TextDisabled("%s", right);
+  ImGui::End();
+  ImGui::PopStyleVar();
+}
+
+void draw_progress(Editor& e, const ViewportRect& vp) {
+  const SolverStatus& st = e.solver_status();
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - st.phase_start).count();
+  std::string text;
+  float fraction = -1.0f;
+  if (e.file_task_running()) {
+    char t[256];
+    std::snprintf(t, sizeof t, "%s... %.1f s", e.file_task_label().c_str(), e.file_task_seconds());
+    text = t;
+  } else if (st.phase == SolverPhase::Building && seconds > 0.2) {
+    char t[128];
+    std::snprintf(t, sizeof t, "Building prisms... %.1f s", seconds);
+    text = t;
+  } else if (st.phase == SolverPhase::Solving && seconds > 0.4) {
+    char t[160];
+    std::snprintf(t, sizeof t, "Converging: iteration %d, energy %.4g", st.iterations, st.energy);
+    text = t;
+    fraction = float(st.progress);
+  }
+  if (text.empty()) return;
+  const float w = 360;
+  ImGui::SetNextWindowPos(ImVec2(float(vp.x + vp.width * 0.5 - w * 0.5), float(vp.y + vp.height - 70)));
+  ImGui::SetNextWindowSize(ImVec2(w, 0));
+  ImGui::SetNextWindowBgAlpha(0.85f);
+  ImGui::Begin("##progress", nullptr, ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove |
+                                          ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing |
+                                          ImGuiWindowFlags_NoInputs);
+  ImGui::TextUnformatted(text.c_str());
+  if (fraction < 0) {  // indeterminate: a sliding block
+    const float t = float(std::fmod(ImGui::GetTime() * 0.8, 1.0));
+    const ImVec2 p = ImGui::GetCursorScreenPos();
+    const float bw = ImGui::GetContentRegionAvail().x, h = 6;
+    ImDrawList* dl = ImGui::GetWindowDrawList();
+    dl->AddRectFilled(p, ImVec2(p.x + bw, p.y + h), u32(0.2f, 0.2f, 0.22f), 3);
+    const float a = p.x + bw * std::max(0.0f, t * 1.3f - 0.3f), b = p.x + bw * std::min(1.0f, t * 1.3f);
+    dl->AddRectFilled(ImVec2(a, p.y), ImVec2(b, p.y + h), u32(0.35f, 0.6f, 0.95f), 3);
+    ImGui::Dummy(ImVec2(bw, h));
+  } else {
+    ImGui::ProgressBar(fraction, ImVec2(-1, 6), "");
+  }
+  ImGui::End();
+}
+
+void draw_help(UiState& ui) {
+  if (!ui.show_help) return;
+  ImGui::SetNextWindowSize(ImVec2(560, 600), ImGuiCond_FirstUseEver);
+  const ImVec2 display = ImGui::GetIO().DisplaySize;
+  ImGui::SetNextWindowPos(ImVec2(display.x * 0.5f, display.y * 0.5f), ImGuiCond_FirstUseEver, ImVec2(0.5f, 0.5f));
+  if (!ImGui::Begin("Controls", &ui.show_help)) return ImGui::End();
+  struct Row {
+    const char* keys;
+    const char* what;
+  };
+  auto table = [](const char* id, std::initializer_list<Row> rows) {
+    if (!ImGui::BeginTable(id, 2, ImGuiTableFlags_RowBg)) return;
+    ImGui::TableSetupColumn("keys", ImGuiTableColumnFlags_WidthFixed, 190);
+    for (const Row& r : rows) {
+      ImGui::TableNextRow();
+      ImGui::TableNextColumn();
+      ImGui::TextUnformatted(r.keys);
+      ImGui::TableNextColumn();
+      ImGui::TextWrapped("%s", r.what);
+    }
+    ImGui::EndTable();
+  };
+  ImGui::TextDisabled("View");
+  table("view", {{"Middle drag / Right drag", "orbit"},
+                 {"Shift + middle or right drag", "pan"},
+                 {"Wheel, Ctrl + middle drag", "zoom (towards the cursor)"},
+                 {"Alt + left / middle / right", "orbit / pan / zoom (Maya style)"},
+                 {"F, Numpad .", "frame the selection or active handle"},
+                 {"Home", "frame all"},
+                 {"Numpad 1 / 3 / 7 (Ctrl: opposite)", "front / right / top view"},
+                 {"Numpad 5", "perspective / orthographic"},
+                 {"4 / 5 / 6 / 7 / 8", "wireframe / flat-smooth / prisms / heat map / paint colours"}});
+  ImGui::TextDisabled("Tools");
+  table("tools", {{"Q", "select: brush (C), box (B), lasso (L); Shift adds, Ctrl removes"},
+                  {"[ and ], Ctrl + wheel", "brush radius"},
+                  {"Alt + Z", "x-ray selection (reach hidden faces)"},
+                  {"G", "drag handles in the view plane"},
+                  {"W / E", "move / rotate gizmo on the active handle; Ctrl snaps"},
+                  {"P", "paint stiffness or width; Ctrl erases"},
+                  {"Right click, Esc", "cancel the current drag or stroke"}});
+  ImGui::TextDisabled("Selection and handles");
+  table("sel", {{"A / Alt + A / Ctrl + I", "select all / none / invert"},
+                {"Ctrl + = / Ctrl + -", "grow / shrink selection"},
+                {"Ctrl + G", "handle from selection (position + orientation)"},
+                {"Ctrl + Shift + G", "fixed region from selection"},
+                {"Ctrl + Alt + G", "spring from selection"},
+                {"Tab / Shift + Tab", "next / previous handle"},
+                {"Alt + G / Alt + Shift + G", "reset the active handle / all handles"},
+                {"Del, X", "delete the active handle"}});
+  ImGui::TextDisabled("Files and history");
+  table("files", {{"Ctrl + Z / Ctrl + Shift + Z", "undo / redo (one drag, stroke or slider change)"},
+                  {"Ctrl + O", "open a mesh or scenario (or drop a file on the window)"},
+                  {"Ctrl + S / Ctrl + Shift + S", "save the scenario / save as"},
+                  {"Ctrl + E", "export the deformed mesh (OBJ, OFF, PLY, STL, OM)"},
+                  {"F12", "screenshot (PNG)"},
+                  {"F10", "hide or show the panels"},
+                  {"Ctrl + Q", "quit"}});
+  ImGui::End();
+}
+
+void draw_error_popup(Editor& e) {
+  static std::string message;
+  const std::string next = e.take_error_popup();
+  if (!next.empty()) {
+    message = next;
+    ImGui::OpenPopup("Problem");
+  }
+  const ImVec2 display = ImGui::GetIO().DisplaySize;
+  ImGui::SetNextWindowPos(ImVec2(display.x * 0.5f, display.y * 0.4f), ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
+  ImGui::SetNextWindowSize(ImVec2(460, 0), ImGuiCond_Appearing);
+  if (ImGui::BeginPopupModal("Problem", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+    ImGui::PushTextWrapPos(440);
+    ImGui::TextUnformatted(message.c_str());
+    ImGui::PopTextWrapPos();
+    if (ImGui::Button("OK", ImVec2(120, 0)) || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Enter)) ||
+        ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape)))
+      ImGui::CloseCurrentPopup();
+    ImGui::EndPopup();
+  }
+}
+
+void draw_file_dialog(Editor& e, UiState& ui) {
+  std::string path;
+  if (!ui.dialog.draw(path)) return;
+  switch (ui.purpose) {
+    case UiState::Purpose::Open: e.open(path); break;
+    case UiState::Purpose::SaveMesh: e.save_mesh(path); break;
+    case UiState::Purpose::SaveScenario: e.save_scenario(path); break;
+    case UiState::Purpose::Screenshot:
+      ui.screenshot_path = path;
+      ui.screenshot_with_ui = false;
+      break;
+    case UiState::Purpose::None: break;
+  }
+  ui.purpose = UiState::Purpose::None;
+}
+
+}  // namespace
+
+ViewportRect viewport_rect(const UiState& ui, float window_width, float window_height, float scale) {
+  ViewportRect r;
+  r.scale = scale;
+  if (!ui.show_panels) {
+    r.width = window_width;
+    r.height = window_height;
+    return r;
+  }
+  r.x = ui.toolbar_width;
+  r.y = ui.menu_height;
+  r.width = std::max(1.0f, window_width - ui.toolbar_width - ui.panel_width);
+  r.height = std::max(1.0f, window_height - ui.menu_height - ui.status_height);
+  return r;
+}
+
+void draw_ui(Editor& e, UiState& ui) {
+  draw_viewport_overlays(e, ImGui::GetBackgroundDrawList());
+  if (ui.show_panels) {
+    draw_menu(e, ui);
+    const float top = ui.menu_height;
+    const float height = ImGui::GetIO().DisplaySize.y - top - ui.status_height;
+    draw_toolbar(e, ui, top, height);
+    draw_properties(e, ui, top, height);
+    draw_status(e, ui);
+    draw_progress(e, e.viewport());
+  }
+  draw_help(ui);
+  draw_error_popup(e);
+  draw_file_dialog(e, ui);
+}
+
+void ask_open(Editor& e, UiState& ui) {
+  std::vector<std::string> ext = kMeshExtensions;
+  ext.push_back(".json");
+  const Document* doc = e.document();
+  ui.purpose = UiState::Purpose::Open;
+  ui.dialog.open(FileDialog::Mode::Open, "Open a mesh or scenario", ext,
+                 doc ? folder_of(doc->mesh_path) : asset_dir() + "/meshes");
+}
+
+void ask_save_mesh(Editor& e, UiState& ui) {
+  const Document* doc = e.document();
+  if (!doc) return;
+  ui.purpose = UiState::Purpose::SaveMesh;
+  ui.dialog.open(FileDialog::Mode::Save, "Export the deformed mesh", kMeshExtensions,
+                 fs::current_path().string(), stem_of(doc->mesh_path) + "-deformed.obj");
+}
+
+void ask_save_scenario(Editor& e, UiState& ui) {
+  const Document* doc = e.document();
+  if (!doc) return;
+  ui.purpose = UiState::Purpose::SaveScenario;
+  ui.dialog.open(FileDialog::Mode::Save, "Save the scenario", {".json"},
+                 doc->scenario_path.empty() ? fs::current_path().string() : folder_of(doc->scenario_path),
+                 doc->scenario_path.empty() ? stem_of(doc->mesh_path) + "-setup.json"
+                                            : fs::path(doc->scenario_path).filename().string());
+}
+
+void ask_screenshot(Editor& e, UiState& ui) {
+  const Document* doc = e.document();
+  ui.purpose = UiState::Purpose::Screenshot;
+  ui.dialog.open(FileDialog::Mode::Save, "Save a screenshot", {".png"}, fs::current_path().string(),
+                 (doc ? stem_of(doc->mesh_path) : std::string("primo")) + ".png");
+}
+
+bool handle_app_shortcut(const InputEvent& ev, Editor& e, UiState& ui) {
+  if (ev.type != InputEvent::Type::Key || ev.action != GLFW_PRESS) return false;
+  const bool ctrl = ev.mods & GLFW_MOD_CONTROL, shift = ev.mods & GLFW_MOD_SHIFT;
+  switch (ev.key) {
+    case GLFW_KEY_O:
+      if (!ctrl) return false;
+      ask_open(e, ui);
+      return true;
+    case GLFW_KEY_S:
+      if (!ctrl || !e.document()) return false;
+      if (shift || e.document()->scenario_path.empty())
+        ask_save_scenario(e, ui);
+      else
+        e.save_scenario(e.document()->scenario_path);
+      return true;
+    case GLFW_KEY_E:
+      if (!ctrl) return false;
+      ask_save_mesh(e, ui);
+      return true;
+    case GLFW_KEY_F12:
+      ask_screenshot(e, ui);
+      return true;
+    case GLFW_KEY_F1:
+      ui.show_help = !ui.show_help;
+      return true;
+    case GLFW_KEY_F10:
+      ui.show_panels = !ui.show_panels;
+      return true;
+    case GLFW_KEY_Q:
+      if (!ctrl) return false;
+      ui.quit_requested = true;
+      return true;
+    default: return false;
+  }
+}
+
+}  // namespace primo::editor

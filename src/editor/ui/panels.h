@@ -1,0 +1,42 @@
+#pragma once
+// The editor's panels, drawn with Dear ImGui each frame: main menu, tool strip, the
+// properties panel (tool settings, handles, prisms, display, solver), status bar, progress,
+// help, error popups and the file dialog. Panels call the Editor's commands; they keep no
+// document state of their own.
+
+#include <string>
+
+#include "editor.h"
+#include "file_dialog.h"
+#include "input.h"
+
+namespace primo::editor {
+
+struct UiState {
+  bool show_panels = true;  // false: the viewport fills the window (clean screenshots)
+  bool show_help = false;
+  FileDialog dialog;
+  enum class Purpose { None, Open, SaveMesh, SaveScenario, Screenshot } purpose = Purpose::None;
+  // A screenshot to take at the end of this frame.
+  std::string screenshot_path;
+  bool screenshot_with_ui = true;
+  // Layout in window coordinates, measured while drawing.
+  float menu_height = 0.0f, toolbar_width = 52.0f, panel_width = 340.0f, status_height = 26.0f;
+  bool quit_requested = false;
+};
+
+// The rectangle left for the 3D view (window coordinates).
+ViewportRect viewport_rect(const UiState& ui, float window_width, float window_height, float scale);
+
+void draw_ui(Editor& editor, UiState& ui);
+
+// Window-level shortcuts (files, help, screenshot). Returns true when the key was taken.
+bool handle_app_shortcut(const InputEvent& event, Editor& editor, UiState& ui);
+
+// The file-dialog actions, also used by menus.
+void ask_open(Editor& editor, UiState& ui);
+void ask_save_mesh(Editor& editor, UiState& ui);
+void ask_save_scenario(Editor& editor, UiState& ui);
+void ask_screenshot(Editor& editor, UiState& ui);
+
+}  // namespace primo::editor

@@ -1,0 +1,250 @@
+// End-to-end tests of the editor window under Xvfb (each ctest entry wraps this binary in
+// xvfb-run). They start `primo edit` on a small bar, drag its top handle with input events
+// (a --script, and real X input through xdotool), let the editor save its scenario, the
+// deformed mesh and screenshots, and check that
+//  - `primo deform` on the saved scenario gives the editor's mesh (1e-6 of the bbox diagonal),
+//  - the screenshots show the mesh, not a blank or error frame.
+// Artifacts stay in <build>/tests/e2e-artifacts/<test>/.
+
+#include <gtest/gtest.h>
+#include <stb_image.h>  // implementation in libstb
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <thread>
+
+#include "primo/geometry.h"
+#include "primo/mesh_io.h"
+#include "primo/scenario.h"
+
+namespace fs = std::filesystem;
+using namespace primo;
+
+namespace {
+
+const std::string kPrimo = PRIMO_EXECUTABLE;
+
+std::string artifacts(const std::string& test) {
+  const fs::path dir = fs::path(PRIMO_E2E_ARTIFACTS) / test;
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir.string();
+}
+
+std::string read_text(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+void write_text(const std::string& path, const std::string& text) { std::ofstream(path) << text; }
+
+int run(const std::string& command) {
+  const int status = std::system(command.c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+// A 0.2 x 1 x 0.2 bar of 4 x 40 quads per side: fixed base, position-only top, a softer middle.
+std::string make_bar_scenario(const std::string& dir) {
+  EXPECT_EQ(run(kPrimo + " generate bar --width 0.2 --length 1 --across 2 --along 20 -o " + dir +
+                "/bar.obj > /dev/null"),
+            0);
+  const std::string path = dir + "/bar-setup.json";
+  write_text(path, R"({
+  "format": "primo-scenario/1",
+  "mesh": "bar.obj",
+  "regions": [ { "name": "soft middle", "select": { "box": { "min": [-1, 0.4, -1], "max": [1, 0.6, 1] } }, "height": 0.5 } ],
+  "handles": [
+    { "name": "base", "select": { "box": { "min": [-1, -1, -1], "max": [1, 0.06, 1] } }, "fix": "all" },
+    { "name": "top", "select": { "box": { "min": [-1, 0.94, -1], "max": [1, 2, 1] } }, "fix": "position" }
+  ]
+})");
+  return path;
+}
+
+double max_vertex_distance(const Mesh& a, const Mesh& b) {
+  double m = 0;
+  for (auto v : a.vertices()) m = std::max(m, (a.point(v) - b.point(OpenMesh::VertexHandle(v.idx()))).norm());
+  return m;
+}
+
+// The saved scenario solved by `primo deform` equals the editor's saved mesh.
+void expect_deform_reproduces(const std::string& dir) {
+  ASSERT_TRUE(fs::exists(dir + "/editor.json"));
+  ASSERT_TRUE(fs::exists(dir + "/editor.obj"));
+  ASSERT_EQ(run(kPrimo + " deform " + dir + "/editor.json -o " + dir + "/deform.obj --stats " + dir +
+                "/deform-stats.json > /dev/null"),
+            0);
+  const Mesh editor = load_mesh(dir + "/editor.obj");
+  const Mesh deform = load_mesh(dir + "/deform.obj");
+  const Mesh rest = load_mesh(dir + "/bar.obj");
+  ASSERT_EQ(editor.n_vertices(), deform.n_vertices());
+  const double diagonal = bounding_box_diagonal(rest);
+  const double moved = max_vertex_distance(editor, rest);
+  EXPECT_GT(moved, 0.05 * diagonal) << "the drag moved the mesh";
+  const double difference = max_vertex_distance(editor, deform);
+  std::printf("editor vs primo deform: %.3g of the bbox diagonal (the drag moved %.3g)\n",
+              difference / diagonal, moved / diagonal);
+  EXPECT_LT(difference, 1e-6 * diagonal);
+
+  // The dragged handle is in the saved scenario with its transform.
+  const Scenario s = load_scenario(dir + "/editor.json");
+  ASSERT_EQ(s.handles.size(), 2u);
+  EXPECT_EQ(s.handles[1].name, "top");
+  EXPECT_EQ(s.handles[1].fix, Fix::Position);
+  EXPECT_GT(s.handles[1].transform.translate.norm(), 0.05);
+  EXPECT_EQ(s.handles[1].select.kind, Selection::Kind::Faces);
+  ASSERT_EQ(s.regions.size(), 1u);
+  EXPECT_EQ(s.regions[0].height, 0.5);
+}
+
+// The picture shows a lit mesh: enough pixels differ from the background gradient (taken
+// per row from the left edge), and the region they cover has shading (not one flat colour).
+void expect_mesh_in_screenshot(const std::string& path) {
+  int w = 0, h = 0, n = 0;
+  unsigned char* data = stbi_load(path.c_str(), &w, &h, &n, 3);
+  ASSERT_NE(data, nullptr) << path;
+  int x0 = w, y0 = h, x1 = -1, y1 = -1;
+  long mesh_pixels = 0;
+  for (int y = 0; y < h; ++y) {
+    const unsigned char* bg = data + size_t(y) * w * 3;
+    for (int x = 0; x < w; ++x) {
+      const unsigned char* p = data + (size_t(y) * w + x) * 3;
+      const int diff = std::abs(p[0] - bg[0]) + std::abs(p[1] - bg[1]) + std::abs(p[2] - bg[2]);
+      if (diff > 40) {
+        ++mesh_pixels;
+        x0 = std::min(x0, x), y0 = std::min(y0, y), x1 = std::max(x1, x), y1 = std::max(y1, y);
+      }
+    }
+  }
+  const double fraction = double(mesh_pixels) / (double(w) * h);
+  std::printf("%s: %dx%d, mesh covers %.1f%% in [%d,%d]-[%d,%d]\n", path.c_str(), w, h, 100 * fraction,
+              x0, y0, x1, y1);
+  EXPECT_GT(fraction, 0.01) << "the mesh is visible";
+  EXPECT_LT(fraction, 0.9) << "not a frame filled with one colour";
+  // Shading inside the mesh's screen region: luminance varies.
+  double sum = 0, sum2 = 0;
+  long count = 0;
+  for (int y = y0; y <= y1; ++y)
+    for (int x = x0; x <= x1; ++x) {
+      const unsigned char* p = data + (size_t(y) * w + x) * 3;
+      const double l = 0.3 * p[0] + 0.59 * p[1] + 0.11 * p[2];
+      sum += l, sum2 += l * l, ++count;
+    }
+  const double mean = sum / std::max(count, 1L);
+  const double stddev = std::sqrt(std::max(0.0, sum2 / std::max(count, 1L) - mean * mean));
+  EXPECT_GT(stddev, 10.0) << "the mesh region is shaded";
+  stbi_image_free(data);
+}
+
+}  // namespace
+
+TEST(EditorE2E, ScriptedDragMatchesDeform) {
+  const std::string dir = artifacts("scripted-drag");
+  const std::string scenario = make_bar_scenario(dir);
+  write_text(dir + "/drag.txt", R"(# Drag the top of the bar sideways, as a user would, then save.
+wait-settled 60
+move @top
+wait 0.3
+press left
+move @top 160 40 over 1.5
+wait 0.2
+release left
+wait-settled 120
+save-scenario )" + dir + R"(/editor.json
+save-mesh )" + dir + R"(/editor.obj
+screenshot )" + dir + R"(/view.png
+screenshot )" + dir + R"(/window.png ui
+quit
+)");
+  const int code = run(kPrimo + " edit " + scenario + " --script " + dir + "/drag.txt > " + dir +
+                       "/editor.log 2>&1");
+  std::printf("%s", read_text(dir + "/editor.log").c_str());
+  ASSERT_EQ(code, 0);
+  EXPECT_NE(read_text(dir + "/editor.log").find("drag 'top'"), std::string::npos);
+  expect_deform_reproduces(dir);
+  expect_mesh_in_screenshot(dir + "/view.png");
+  expect_mesh_in_screenshot(dir + "/window.png");
+}
+
+TEST(EditorE2E, XdotoolDragMatchesDeform) {
+  if (run("command -v xdotool > /dev/null") != 0) GTEST_SKIP() << "xdotool is not installed";
+  const std::string dir = artifacts("xdotool-drag");
+  const std::string scenario = make_bar_scenario(dir);
+  // The script only reports where the handle is, waits for the test's real X input, then saves.
+  write_text(dir + "/sync.txt", R"(wait-settled 60
+report @top
+wait-file )" + dir + R"(/dragged 60
+wait-settled 120
+save-scenario )" + dir + R"(/editor.json
+save-mesh )" + dir + R"(/editor.obj
+screenshot )" + dir + R"(/view.png
+quit
+)");
+  const std::string log = dir + "/editor.log";
+  const pid_t pid = fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    const std::string cmd = "exec " + kPrimo + " edit " + scenario + " --script " + dir + "/sync.txt > " +
+                            log + " 2>&1";
+    execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  // Wait for "report X Y".
+  double x = -1, y = -1;
+  for (int i = 0; i < 600 && x < 0; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    std::istringstream lines(read_text(log));
+    std::string line;
+    while (std::getline(lines, line))
+      if (line.rfind("report ", 0) == 0) std::sscanf(line.c_str(), "report %lf %lf", &x, &y);
+  }
+  ASSERT_GE(x, 0) << read_text(log);
+  // A real drag: press on the handle, move in steps, release.
+  const std::string win = "$(xdotool search --sync --name PriMo | head -n 1)";
+  std::ostringstream drag;
+  drag << "w=" << win << "; xdotool mousemove --window $w " << int(x) << " " << int(y) << "; sleep 0.3; "
+       << "xdotool mousedown 1; sleep 0.3; ";
+  for (int k = 1; k <= 8; ++k)
+    drag << "xdotool mousemove --window $w " << int(x) + 20 * k << " " << int(y) + 5 * k << "; sleep 0.1; ";
+  drag << "sleep 0.3; xdotool mouseup 1";
+  EXPECT_EQ(run(drag.str()), 0);
+  write_text(dir + "/dragged", "");
+  int status = 0;
+  for (int i = 0; i < 1800; ++i) {
+    if (waitpid(pid, &status, WNOHANG) == pid) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    if (i == 1799) {
+      kill(pid, SIGKILL);
+      waitpid(pid, &status, 0);
+      FAIL() << "the editor did not finish: " << read_text(log);
+    }
+  }
+  std::printf("%s", read_text(log).c_str());
+  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << read_text(log);
+  EXPECT_NE(read_text(log).find("drag 'top'"), std::string::npos) << "the X input reached the editor";
+  expect_deform_reproduces(dir);
+  expect_mesh_in_screenshot(dir + "/view.png");
+}
+
+TEST(EditorE2E, ScreenshotFromTheCommandLine) {
+  const std::string dir = artifacts("screenshot");
+  const std::string scenario = make_bar_scenario(dir);
+  ASSERT_EQ(run(kPrimo + " edit " + scenario + " --screenshot " + dir + "/shot.png > " + dir + "/editor.log 2>&1"), 0)
+      << read_text(dir + "/editor.log");
+  expect_mesh_in_screenshot(dir + "/shot.png");
+  // A broken input is an error exit, not a crash or a hang.
+  write_text(dir + "/broken.json", "{ \"format\": \"primo-scenario/1\" }");
+  EXPECT_EQ(run(kPrimo + " edit " + dir + "/broken.json --screenshot " + dir + "/none.png > " + dir +
+                "/broken.log 2>&1"),
+            1);
+  EXPECT_FALSE(fs::exists(dir + "/none.png"));
+  EXPECT_NE(read_text(dir + "/broken.log").find("broken.json"), std::string::npos);
+}
