@@ -43,6 +43,11 @@ struct RigidSystem {
     int body[2];
     double weight;
     PatchModes local[2];
+    // cross[s] = weight * sum over modes of (mode weight) own_s other^T, with own = local[s]
+    // and other = local[1 - s]: the constant part of Horn's covariance for side s. Kept in
+    // step with `local` by update_cross().
+    Mat3 cross[2];
+    void update_cross();
   };
 
   // A zero-rest-length spring on a point of a body.

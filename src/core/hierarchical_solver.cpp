@@ -155,6 +155,7 @@ void HierarchicalSolver::restrict_level(Level& level, const std::vector<BodyStat
       c.local[s].dv = st.rotation * fc.local[s].dv;
       c.local[s].duv = st.rotation * fc.local[s].duv;
     }
+    c.update_cross();
   }
   sys.springs.resize(fine_.springs.size());
   for (size_t k = 0; k < fine_.springs.size(); ++k) {

@@ -13,38 +13,32 @@ BodyState local_match(const RigidSystem& system, const std::vector<BodyState>& s
   const BodyState& current = state[body];
   if (b.kind == BodyKind::Fixed) return current;
 
-  // Point pairs (source in body coordinates, target in world) and vector pairs, weighted.
-  // Accumulate raw moments so that one pass serves every constraint variant.
+  // Weighted point pairs (source in body coordinates, target in world) and direction pairs,
+  // accumulated as raw moments so that one pass serves every constraint variant:
+  // cross = sum w s t^T over both kinds, the sums over point pairs only.
   double point_weight = 0.0;
   Vec3 source_sum = Vec3::Zero(), target_sum = Vec3::Zero();
-  Mat3 points_st = Mat3::Zero();   // sum w s t^T over point pairs
-  Mat3 vectors_st = Mat3::Zero();  // sum w s t^T over vector pairs
-
-  auto add_point = [&](const Vec3& s, const Vec3& t, double w) {
-    point_weight += w;
-    source_sum += w * s;
-    target_sum += w * t;
-    points_st.noalias() += w * s * t.transpose();
-  };
-  auto add_vector = [&](const Vec3& s, const Vec3& t, double w) {
-    vectors_st.noalias() += w * s * t.transpose();
-  };
+  Mat3 cross = Mat3::Zero();
 
   for (int k = system.coupling_begin[body]; k < system.coupling_begin[body + 1]; ++k) {
     const auto [ci, side] = system.body_couplings[k];
     const RigidSystem::Coupling& c = system.couplings[ci];
-    const PatchModes& own = c.local[side];
-    const PatchModes& other = c.local[1 - side];
     const BodyState& os = state[c.body[1 - side]];
     const double w = c.weight;
-    add_point(own.mean, world_point(os, other.mean), w);
-    add_vector(own.du, os.rotation * other.du, w * kModeWeightDu);
-    add_vector(own.dv, os.rotation * other.dv, w * kModeWeightDv);
-    add_vector(own.duv, os.rotation * other.duv, w * kModeWeightDuv);
+    // With targets t = R_o other + p_o: sum w own t^T = cross[side] R_o^T + (w own.mean) p_o^T.
+    const Vec3 weighted_source = w * c.local[side].mean;
+    point_weight += w;
+    source_sum += weighted_source;
+    target_sum += w * world_point(os, c.local[1 - side].mean);
+    cross.noalias() += c.cross[side] * os.rotation.transpose();
+    cross.noalias() += weighted_source * os.position.transpose();
   }
   for (int k = system.spring_begin[body]; k < system.spring_begin[body + 1]; ++k) {
     const RigidSystem::Spring& s = system.springs[system.body_springs[k]];
-    add_point(s.local, s.target, s.weight);
+    point_weight += s.weight;
+    source_sum += s.weight * s.local;
+    target_sum += s.weight * s.target;
+    cross.noalias() += s.weight * s.local * s.target.transpose();
   }
   if (point_weight <= 0.0) return current;
 
@@ -54,14 +48,14 @@ BodyState local_match(const RigidSystem& system, const std::vector<BodyState>& s
   switch (b.kind) {
     case BodyKind::Free: {
       // Centred cross-covariance: sum w (s - s̄)(t - t̄)^T = sum w s t^T - W s̄ t̄^T.
-      const Mat3 S = points_st - point_weight * source_mean * target_mean.transpose() + vectors_st;
+      const Mat3 S = cross - point_weight * source_mean * target_mean.transpose();
       next.rotation = horn_rotation(S, current.rotation);
       next.position = target_mean - next.rotation * source_mean;
       break;
     }
     case BodyKind::PinnedPosition: {
       // Rotation about the pinned rest_center, which stays at `position`.
-      const Mat3 S = points_st - source_sum * current.position.transpose() + vectors_st;
+      const Mat3 S = cross - source_sum * current.position.transpose();
       next.rotation = horn_rotation(S, current.rotation);
       break;
     }

@@ -25,6 +25,18 @@ void add_outer(Mat3& m, const Vec3& a, double w) { m.noalias() += w * a * a.tran
 
 }  // namespace
 
+void RigidSystem::Coupling::update_cross() {
+  for (int s = 0; s < 2; ++s) {
+    const PatchModes& own = local[s];
+    const PatchModes& other = local[1 - s];
+    cross[s].noalias() = own.mean * other.mean.transpose();
+    cross[s].noalias() += kModeWeightDu * own.du * other.du.transpose();
+    cross[s].noalias() += kModeWeightDv * own.dv * other.dv.transpose();
+    cross[s].noalias() += kModeWeightDuv * own.duv * other.duv.transpose();
+    cross[s] *= weight;
+  }
+}
+
 double RigidSystem::coupling_energy(const Coupling& c, const BodyState& s0,
                                     const BodyState& s1) const {
   return c.weight * mode_distance2(to_world(c.local[0], s0), to_world(c.local[1], s1));
@@ -99,6 +111,7 @@ RigidSystem build_rigid_system(const PrismLayer& layer, const std::vector<int>& 
     c.weight = j.weight;
     c.local[0] = relative_to(j.side[0], sys.bodies[b0].rest_center);
     c.local[1] = relative_to(j.side[1], sys.bodies[b1].rest_center);
+    c.update_cross();
     sys.couplings.push_back(c);
   }
 
