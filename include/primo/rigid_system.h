@@ -91,7 +91,8 @@ RigidSystem build_rigid_system(const PrismLayer& layer, const std::vector<int>& 
 // Replaces the system's springs (their targets or weights changed).
 void set_springs(RigidSystem& system, const PrismLayer& layer,
                  const std::vector<FaceSpring>& springs);
-// Rebuilds the per-body spring index after `system.springs` was replaced.
+// Rebuild the per-body indices after `system.couplings` or `system.springs` was replaced.
+void index_couplings(RigidSystem& system);
 void index_springs(RigidSystem& system);
 
 // World position of a rest-coordinate point of a body, and of a body-local offset.

@@ -67,17 +67,7 @@ HierarchicalSolver::HierarchicalSolver(const RigidSystem& fine, const Hierarchic
       sys.couplings.push_back(c);
       level->coupling_fine.push_back(ci);
     }
-    // Adjacency (CSR), as build_rigid_system makes it.
-    sys.coupling_begin.assign(n_clusters + 1, 0);
-    for (const auto& c : sys.couplings) {
-      ++sys.coupling_begin[c.body[0] + 1];
-      ++sys.coupling_begin[c.body[1] + 1];
-    }
-    for (int c = 0; c < n_clusters; ++c) sys.coupling_begin[c + 1] += sys.coupling_begin[c];
-    sys.body_couplings.resize(sys.coupling_begin[n_clusters]);
-    std::vector<int> fill(sys.coupling_begin.begin(), sys.coupling_begin.end() - 1);
-    for (int i = 0; i < int(sys.couplings.size()); ++i)
-      for (int s = 0; s < 2; ++s) sys.body_couplings[fill[sys.couplings[i].body[s]]++] = {i, s};
+    index_couplings(sys);
 
     // Rest metrics of the clusters (their prisms' sides about the cluster's rest centre),
     // combined from the fine bodies' metrics by the parallel-axis rule.

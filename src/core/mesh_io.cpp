@@ -28,6 +28,7 @@
 #include <system_error>
 
 #include "primo/error.h"
+#include "silence_openmesh.h"
 
 namespace fs = std::filesystem;
 
@@ -44,22 +45,6 @@ const char* const kSupportedExtensions = ".obj, .off, .ply, .stl or .om";
 
 [[noreturn]] void fail_at_line(const std::string& path, int line, const std::string& what) {
   fail(path, "line " + std::to_string(line) + ": " + what);
-}
-
-// OpenMesh logs warnings and errors to the console; the library prints nothing. Disabling its
-// streams is not enough: the OM writer re-enables omlog() (and then prints "#bytes written"),
-// so the streams are also cut off from the console.
-void silence_openmesh() {
-  static const bool silenced = [] {
-    for (OpenMesh::mostream* stream : {&omlog(), &omout(), &omerr()}) {
-      stream->disable();
-      stream->disconnect(std::clog);
-      stream->disconnect(std::cout);
-      stream->disconnect(std::cerr);
-    }
-    return true;
-  }();
-  (void)silenced;
 }
 
 std::string lowercase(std::string text) {

@@ -4,7 +4,6 @@
 // rejects a non-manifold face or silently works around it (it duplicates vertices), and in both
 // cases the face and vertex indices of the file would no longer be those of the mesh.
 
-#include <OpenMesh/Core/System/omstream.hh>
 #include <algorithm>
 #include <charconv>
 #include <cmath>
@@ -19,6 +18,7 @@
 
 #include "primo/error.h"
 #include "primo/mesh_io.h"
+#include "silence_openmesh.h"
 
 namespace primo {
 namespace {
@@ -298,16 +298,7 @@ Mesh mesh_from_soup(const PolygonSoup& soup, const std::string& source) {
   check_face_areas(soup, source);
 
   // OpenMesh reports add_face failures on its error stream; the library prints nothing.
-  static const bool openmesh_silenced = [] {
-    for (OpenMesh::mostream* stream : {&omlog(), &omout(), &omerr()}) {
-      stream->disable();
-      stream->disconnect(std::clog);
-      stream->disconnect(std::cout);
-      stream->disconnect(std::cerr);
-    }
-    return true;
-  }();
-  (void)openmesh_silenced;
+  silence_openmesh();
 
   Mesh mesh;
   mesh.reserve(soup.points.size(), edges.size(), soup.faces.size());

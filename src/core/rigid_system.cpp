@@ -115,18 +115,7 @@ RigidSystem build_rigid_system(const PrismLayer& layer, const std::vector<int>& 
     sys.couplings.push_back(c);
   }
 
-  // CSR adjacency.
-  sys.coupling_begin.assign(n_bodies + 1, 0);
-  for (const auto& c : sys.couplings) {
-    ++sys.coupling_begin[c.body[0] + 1];
-    ++sys.coupling_begin[c.body[1] + 1];
-  }
-  for (int b = 0; b < n_bodies; ++b) sys.coupling_begin[b + 1] += sys.coupling_begin[b];
-  sys.body_couplings.resize(sys.coupling_begin[n_bodies]);
-  std::vector<int> fill(sys.coupling_begin.begin(), sys.coupling_begin.end() - 1);
-  for (int i = 0; i < int(sys.couplings.size()); ++i)
-    for (int s = 0; s < 2; ++s) sys.body_couplings[fill[sys.couplings[i].body[s]]++] = {i, s};
-
+  index_couplings(sys);
   set_springs(sys, layer, springs);
   return sys;
 }
@@ -140,6 +129,20 @@ void set_springs(RigidSystem& sys, const PrismLayer& layer,
                            s.weight});
   }
   index_springs(sys);
+}
+
+void index_couplings(RigidSystem& sys) {
+  const int n_bodies = sys.n_bodies();
+  sys.coupling_begin.assign(n_bodies + 1, 0);
+  for (const auto& c : sys.couplings) {
+    ++sys.coupling_begin[c.body[0] + 1];
+    ++sys.coupling_begin[c.body[1] + 1];
+  }
+  for (int b = 0; b < n_bodies; ++b) sys.coupling_begin[b + 1] += sys.coupling_begin[b];
+  sys.body_couplings.resize(sys.coupling_begin[n_bodies]);
+  std::vector<int> fill(sys.coupling_begin.begin(), sys.coupling_begin.end() - 1);
+  for (int i = 0; i < int(sys.couplings.size()); ++i)
+    for (int s = 0; s < 2; ++s) sys.body_couplings[fill[sys.couplings[i].body[s]]++] = {i, s};
 }
 
 void index_springs(RigidSystem& sys) {
