@@ -17,9 +17,17 @@ bool is_scenario_path(const std::string& path) {
   return ext == ".json";
 }
 
+// Meshes of more than twice this many triangles are drawn over a proxy of at most this many
+// while the camera moves: a software renderer draws about 3 million triangles a second.
+constexpr int kProxyTriangles = 30000;
+
 std::unique_ptr<Document> make_document(Mesh mesh, std::string mesh_path) {
   auto doc = std::make_unique<Document>();
   doc->topology = std::make_shared<const MeshTopology>(build_topology(mesh));
+  doc->proxy = std::make_shared<const ProxyTriangles>(
+      int(doc->topology->triangle_face.size()) > 2 * kProxyTriangles
+          ? cluster_triangles(*doc->topology, kProxyTriangles)
+          : ProxyTriangles{});
   doc->mesh = std::make_shared<const Mesh>(std::move(mesh));
   doc->mesh_path = std::move(mesh_path);
   doc->state = initial_edit_state(doc->n_faces());

@@ -7,6 +7,7 @@
 
 #include "edit_state.h"
 #include "mesh_topology.h"
+#include "proxy_mesh.h"
 #include "primo/scenario.h"
 #include "undo_stack.h"
 
@@ -15,6 +16,8 @@ namespace primo::editor {
 struct Document {
   std::shared_ptr<const Mesh> mesh;
   std::shared_ptr<const MeshTopology> topology;
+  // Drawn instead of the full mesh while the camera moves (empty for small meshes).
+  std::shared_ptr<const ProxyTriangles> proxy;
   std::string mesh_path;      // the mesh file
   std::string scenario_path;  // the scenario it was opened from or last saved to ("" if none)
   SolverSpec solver;          // max_iterations / tolerance / method of a settle and of exports

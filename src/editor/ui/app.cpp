@@ -80,23 +80,16 @@ void load_font(float scale) {
   io.Fonts->AddFontDefault(&config);
 }
 
-GLFWwindow* create_window(const EditorOptions& options, int samples) {
-  glfwDefaultWindowHints();
-  glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
-  glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
-  glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
-  glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
-  glfwWindowHint(GLFW_SAMPLES, samples);
-  return glfwCreateWindow(options.width, options.height, "PriMo", nullptr, nullptr);
-}
-
-bool software_renderer(GLFWwindow* window) {
-  glfwMakeContextCurrent(window);
+// Multisampling of the scene: 4 samples on a GPU, none on a software renderer (llvmpipe under
+// Xvfb pays 3-4x per frame for it). PRIMO_MSAA=N forces N.
+int scene_samples() {
+  if (const char* msaa = std::getenv("PRIMO_MSAA"); msaa && *msaa) return std::atoi(msaa);
   const char* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
   const std::string name = renderer ? renderer : "";
-  glfwMakeContextCurrent(nullptr);
-  return name.find("llvmpipe") != std::string::npos || name.find("softpipe") != std::string::npos ||
-         name.find("swrast") != std::string::npos;
+  const bool software = name.find("llvmpipe") != std::string::npos ||
+                        name.find("softpipe") != std::string::npos ||
+                        name.find("swrast") != std::string::npos;
+  return software ? 0 : 4;
 }
 
 class App : public ScriptHost {
@@ -235,7 +228,7 @@ void App::sync_renderer() {
   const Document* doc = editor_.document();
   if (!doc) return;
   if (shown_topology_ != doc->topology.get()) {
-    renderer_->set_topology(*doc->topology);
+    renderer_->set_topology(*doc->topology, *doc->proxy);
     shown_topology_ = doc->topology.get();
   }
   if (editor_.take_geometry_changed()) {
@@ -297,7 +290,7 @@ int App::run() {
   ImGui_ImplOpenGL3_Init("#version 330 core");
 
   try {
-    renderer_ = std::make_unique<MeshRenderer>(shader_dir());
+    renderer_ = std::make_unique<MeshRenderer>(shader_dir(), scene_samples());
   } catch (const std::exception& e) {
     std::fprintf(stderr, "primo edit: error: %s\n", e.what());
     return 1;
@@ -326,7 +319,7 @@ int App::run() {
   while (!quit_ && !glfwWindowShouldClose(window_)) {
     const bool animate = editor_.solver_status().busy() || editor_.file_task_running() || script_ ||
                          screenshot_run || editor_.gesture() != Editor::Gesture::None ||
-                         editor_.camera().update(0.0);
+                         editor_.camera().update(0.0) || renderer_->drew_proxy();
     if (animate)
       glfwPollEvents();
     else
@@ -379,6 +372,7 @@ int App::run() {
     glClearColor(0.11f, 0.115f, 0.13f, 1.0f);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     const int vx = int(vp.x * scale), vw = int(vp.width * scale), vh = int(vp.height * scale);
+    renderer_->set_interactive(editor_.gesture() != Editor::Gesture::None);
     renderer_->draw(editor_.display, vx, fb_h - int(vp.y * scale) - vh, vw, vh);
 
     // A --screenshot run: once the view shows a settled solve (two frames in a row).
@@ -403,10 +397,6 @@ int App::run() {
       script_.reset();
     }
   }
-  const Editor::DragStats& d = editor_.last_drag_stats();
-  if (d.frames > 0)
-    std::printf("[primo edit] last drag: %d frames, %.2f ms mean frame time, %.2f ms max\n", d.frames,
-                d.total_ms / d.frames, d.max_ms);
   ImGui_ImplOpenGL3_Shutdown();
   ImGui_ImplGlfw_Shutdown();
   return exit_code_;
@@ -424,14 +414,11 @@ int run_editor(const EditorOptions& options) {
                  g_glfw_error.c_str());
     return 1;
   }
-  // Multisampling smooths edges on a GPU; a software renderer (llvmpipe under Xvfb) pays 3-4x
-  // per frame for it, so there the window is made again without it. PRIMO_MSAA=N forces N.
-  const char* msaa = std::getenv("PRIMO_MSAA");
-  GLFWwindow* window = create_window(options, msaa && *msaa ? std::atoi(msaa) : 4);
-  if (window && !(msaa && *msaa) && software_renderer(window)) {
-    glfwDestroyWindow(window);
-    window = create_window(options, 0);
-  }
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
+  glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+  glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+  GLFWwindow* window = glfwCreateWindow(options.width, options.height, "PriMo", nullptr, nullptr);
   if (!window) {
     std::fprintf(stderr, "primo edit: error: cannot create an OpenGL 3.3 core window: %s\n",
                  g_glfw_error.c_str());
@@ -440,7 +427,6 @@ int run_editor(const EditorOptions& options) {
   }
   glfwMakeContextCurrent(window);
   glfwSwapInterval(1);
-  glEnable(GL_MULTISAMPLE);
 
   IMGUI_CHECKVERSION();
   ImGui::CreateContext();

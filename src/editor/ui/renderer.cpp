@@ -1,6 +1,7 @@
 #include "renderer.h"
 
 #include <glm/gtc/type_ptr.hpp>
+#include <algorithm>
 #include <limits>
 
 namespace primo::editor {
@@ -15,7 +16,7 @@ constexpr float kBaseColor[3] = {0.74f, 0.72f, 0.69f};
 
 }  // namespace
 
-MeshRenderer::MeshRenderer(const std::string& shader_folder)
+MeshRenderer::MeshRenderer(const std::string& shader_folder, int samples)
     : mesh_(shader_folder, "mesh.vert", "mesh.frag"),
       pick_(shader_folder, "mesh.vert", "pick.frag"),
       lines_(shader_folder, "lines.vert", "lines.frag"),
@@ -50,21 +51,41 @@ MeshRenderer::MeshRenderer(const std::string& shader_folder)
   glGenTextures(1, &triangle_face_texture_);
   glGenBuffers(1, &color_buffer_);
   glGenTextures(1, &color_texture_);
+  glGenBuffers(1, &proxy_ebo_);
+  glGenBuffers(1, &proxy_face_buffer_);
+  glGenTextures(1, &proxy_face_texture_);
+  GLint max_samples = 0;
+  glGetIntegerv(GL_MAX_SAMPLES, &max_samples);
+  samples_ = std::clamp(samples, 0, int(max_samples));
 }
 
 MeshRenderer::~MeshRenderer() {
   const GLuint buffers[] = {position_vbo_, normal_vbo_, triangle_ebo_, edge_ebo_,
-                            triangle_face_buffer_, color_buffer_, prism_vbo_, prism_ebo_};
+                            triangle_face_buffer_, color_buffer_, prism_vbo_, prism_ebo_,
+                            proxy_ebo_, proxy_face_buffer_};
   glDeleteBuffers(GLsizei(std::size(buffers)), buffers);
-  const GLuint textures[] = {triangle_face_texture_, color_texture_, pick_id_, pick_depth_};
+  const GLuint textures[] = {triangle_face_texture_, color_texture_, pick_id_, pick_depth_,
+                             proxy_face_texture_};
   glDeleteTextures(GLsizei(std::size(textures)), textures);
   const GLuint arrays[] = {vao_, prism_vao_, empty_vao_};
   glDeleteVertexArrays(GLsizei(std::size(arrays)), arrays);
-  if (pick_z_) glDeleteRenderbuffers(1, &pick_z_);
-  if (pick_fbo_) glDeleteFramebuffers(1, &pick_fbo_);
+  const GLuint renderbuffers[] = {pick_z_, scene_color_, scene_depth_};
+  glDeleteRenderbuffers(GLsizei(std::size(renderbuffers)), renderbuffers);
+  const GLuint framebuffers[] = {pick_fbo_, scene_fbo_};
+  glDeleteFramebuffers(GLsizei(std::size(framebuffers)), framebuffers);
 }
 
-void MeshRenderer::set_topology(const MeshTopology& t) {
+void MeshRenderer::set_topology(const MeshTopology& t, const ProxyTriangles& proxy) {
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, proxy_ebo_);
+  glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(proxy.triangles.size() * sizeof(unsigned)),
+               proxy.triangles.data(), GL_STATIC_DRAW);
+  glBindBuffer(GL_TEXTURE_BUFFER, proxy_face_buffer_);
+  glBufferData(GL_TEXTURE_BUFFER, GLsizeiptr(proxy.triangle_face.size() * sizeof(int)),
+               proxy.triangle_face.data(), GL_STATIC_DRAW);
+  glBindTexture(GL_TEXTURE_BUFFER, proxy_face_texture_);
+  glTexBuffer(GL_TEXTURE_BUFFER, GL_R32I, proxy_face_buffer_);
+  proxy_count_ = GLsizei(proxy.triangle_face.size());
+
   glBindVertexArray(vao_);
   glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, triangle_ebo_);
   glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(t.triangles.size() * sizeof(unsigned)),
@@ -115,6 +136,7 @@ void MeshRenderer::set_geometry(const std::vector<float>& positions, const std::
 
 void MeshRenderer::set_prism_corners(const std::vector<float>& corners) {
   prisms_uploaded_ = !corners.empty();
+  ++geometry_version_;  // the scene shows them
   if (!prisms_uploaded_) return;
   glBindBuffer(GL_ARRAY_BUFFER, prism_vbo_);
   glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(corners.size() * sizeof(float)), corners.data(),
@@ -127,14 +149,63 @@ void MeshRenderer::set_face_colors(const std::vector<std::uint32_t>& colors) {
                colors.data(), GL_DYNAMIC_DRAW);
   glBindTexture(GL_TEXTURE_BUFFER, color_texture_);
   glTexBuffer(GL_TEXTURE_BUFFER, GL_RGBA8, color_buffer_);
+  ++colors_version_;
+}
+
+void MeshRenderer::ensure_scene_target(int width, int height) {
+  if (scene_fbo_ && width == scene_width_ && height == scene_height_) return;
+  if (!scene_fbo_) {
+    glGenFramebuffers(1, &scene_fbo_);
+    glGenRenderbuffers(1, &scene_color_);
+    glGenRenderbuffers(1, &scene_depth_);
+  }
+  glBindRenderbuffer(GL_RENDERBUFFER, scene_color_);
+  glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples_, GL_RGBA8, width, height);
+  glBindRenderbuffer(GL_RENDERBUFFER, scene_depth_);
+  glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples_, GL_DEPTH_COMPONENT24, width, height);
+  glBindFramebuffer(GL_FRAMEBUFFER, scene_fbo_);
+  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, scene_color_);
+  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, scene_depth_);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  scene_width_ = width;
+  scene_height_ = height;
+  drawn_ = SceneKey{};
 }
 
 void MeshRenderer::draw(const DisplaySettings& display, int x, int y, int width, int height) {
-  glViewport(x, y, width, height);
-  glEnable(GL_SCISSOR_TEST);
-  glScissor(x, y, width, height);
+  if (width <= 0 || height <= 0) return;
+  ensure_scene_target(width, height);
+  SceneKey key;
+  key.matrix = camera_ ? camera_->projection() * camera_->view() : glm::dmat4(1.0);
+  // The proxy while the camera moves or a gesture is under way, and for a moment after (so
+  // that a frame without motion in the middle of an orbit does not draw the full mesh).
+  const auto now = std::chrono::steady_clock::now();
+  if (key.matrix != last_matrix_ || interactive_) last_motion_ = now;
+  last_matrix_ = key.matrix;
+  key.proxy = proxy_count_ > 0 && now - last_motion_ < std::chrono::milliseconds(300);
+  key.geometry = geometry_version_;
+  key.colors = colors_version_;
+  key.smooth = display.smooth;
+  key.wireframe = display.wireframe;
+  key.prisms = display.prisms;
+  key.width = width;
+  key.height = height;
+  if (!(key == drawn_)) {
+    glBindFramebuffer(GL_FRAMEBUFFER, scene_fbo_);
+    render_scene(display, width, height, key.proxy);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    drawn_ = key;
+  }
+  drew_proxy_ = key.proxy;
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, scene_fbo_);
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+  glBlitFramebuffer(0, 0, width, height, x, y, x + width, y + height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+void MeshRenderer::render_scene(const DisplaySettings& display, int width, int height, bool proxy) {
+  glViewport(0, 0, width, height);
   glClear(GL_DEPTH_BUFFER_BIT);
-  glDisable(GL_SCISSOR_TEST);
 
   // 1. Background gradient.
   glDisable(GL_DEPTH_TEST);
@@ -156,18 +227,24 @@ void MeshRenderer::draw(const DisplaySettings& display, int x, int y, int width,
   glUniform1i(mesh_.uniform("smooth_shading"), display.smooth ? 1 : 0);
   glUniform3fv(mesh_.uniform("base_color"), 1, kBaseColor);
   glActiveTexture(GL_TEXTURE0);
-  glBindTexture(GL_TEXTURE_BUFFER, triangle_face_texture_);
+  glBindTexture(GL_TEXTURE_BUFFER, proxy ? proxy_face_texture_ : triangle_face_texture_);
   glUniform1i(mesh_.uniform("triangle_face"), 0);
   glActiveTexture(GL_TEXTURE1);
   glBindTexture(GL_TEXTURE_BUFFER, color_texture_);
   glUniform1i(mesh_.uniform("face_color"), 1);
   glActiveTexture(GL_TEXTURE0);
   glBindVertexArray(vao_);
-  glDrawElements(GL_TRIANGLES, 3 * triangle_count_, GL_UNSIGNED_INT, nullptr);
+  if (proxy) {
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, proxy_ebo_);
+    glDrawElements(GL_TRIANGLES, 3 * proxy_count_, GL_UNSIGNED_INT, nullptr);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, triangle_ebo_);  // the VAO's own index buffer
+  } else {
+    glDrawElements(GL_TRIANGLES, 3 * triangle_count_, GL_UNSIGNED_INT, nullptr);
+  }
   glDisable(GL_POLYGON_OFFSET_FILL);
 
-  // 3. Lines: polygon edges and prism cages, blended, not writing depth.
-  if (display.wireframe || (display.prisms && prisms_uploaded_)) {
+  // 3. Lines: polygon edges and prism cages, blended, not writing depth (not over a proxy).
+  if (!proxy && (display.wireframe || (display.prisms && prisms_uploaded_))) {
     glEnable(GL_BLEND);
     glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
     glDepthMask(GL_FALSE);
@@ -182,7 +259,7 @@ void MeshRenderer::draw(const DisplaySettings& display, int x, int y, int width,
       glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, triangle_ebo_);  // the VAO's own index buffer
     }
     if (display.prisms && prisms_uploaded_) {
-      glUniform4f(lines_.uniform("color"), 0.35f, 0.75f, 1.0f, 0.45f);
+      glUniform4f(lines_.uniform("color"), 0.35f, 0.75f, 1.0f, 0.35f);
       glBindVertexArray(prism_vao_);
       glDrawElements(GL_LINES, prism_index_count_, GL_UNSIGNED_INT, nullptr);
     }

@@ -2,9 +2,14 @@
 // Draws the mesh and reads the pick buffer. Buffers are uploaded only when told: the
 // topology once per mesh (fan triangles, polygon edges, triangle -> face), positions and
 // normals per solver result, per-face overlay colours when they change, prism corners when
-// shown. The pick pass (face id and eye depth per pixel) is rendered on demand, only when
-// the geometry or the camera changed since the last one.
+// shown. The scene is drawn into an offscreen target (multisampled when asked) and copied to
+// the window; it is drawn again only when the camera, the geometry, the colours or the display
+// settings changed, so frames where only the panels change cost a copy. While the camera
+// moves, a big mesh is drawn through its proxy (vertex clustering). The pick pass (face id and
+// eye depth per pixel) is rendered on demand, only when the geometry or the camera changed
+// since the last one.
 
+#include <chrono>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -14,33 +19,41 @@
 #include "gl.h"
 #include "gl_shader.h"
 #include "mesh_topology.h"
+#include "proxy_mesh.h"
 
 namespace primo::editor {
 
 class MeshRenderer : public Picker {
  public:
   // Loads the shaders from `shader_folder`; throws primo::Error (path and GL log) on failure.
-  explicit MeshRenderer(const std::string& shader_folder);
+  // `samples`: multisampling of the scene (0 for none).
+  MeshRenderer(const std::string& shader_folder, int samples);
   ~MeshRenderer() override;
   MeshRenderer(const MeshRenderer&) = delete;
   MeshRenderer& operator=(const MeshRenderer&) = delete;
 
   // The camera pick passes use (the editor's).
   void set_camera(const Camera* camera) { camera_ = camera; }
-  void set_topology(const MeshTopology& topology);
+  void set_topology(const MeshTopology& topology, const ProxyTriangles& proxy);
   void set_geometry(const std::vector<float>& positions, const std::vector<float>& normals);
   void set_prism_corners(const std::vector<float>& corners);  // empty: none to show
   void set_face_colors(const std::vector<std::uint32_t>& colors);
   bool has_mesh() const { return triangle_count_ > 0; }
 
   // Draws background and mesh into the rectangle (GL window coordinates, origin bottom-left)
-  // of the current framebuffer.
+  // of the window's framebuffer.
   void draw(const DisplaySettings& display, int x, int y, int width, int height);
+  // Whether the last draw used the proxy (the camera was moving).
+  bool drew_proxy() const { return drew_proxy_; }
+  // A gesture is under way (drag, stroke, orbit): big meshes stay on the proxy until it ends.
+  void set_interactive(bool interactive) { interactive_ = interactive; }
 
   PickImage read(int x0, int y0, int width, int height) override;
 
  private:
   void render_pick();
+  void render_scene(const DisplaySettings& display, int width, int height, bool proxy);
+  void ensure_scene_target(int width, int height);
 
   const Camera* camera_ = nullptr;
   ShaderProgram mesh_, pick_, lines_, background_;
@@ -51,6 +64,29 @@ class MeshRenderer : public Picker {
   GLuint empty_vao_ = 0;
   GLsizei triangle_count_ = 0, edge_index_count_ = 0, prism_index_count_ = 0;
   bool prisms_uploaded_ = false;
+  GLuint proxy_ebo_ = 0, proxy_face_buffer_ = 0, proxy_face_texture_ = 0;
+  GLsizei proxy_count_ = 0;
+
+  // Offscreen scene and what it shows.
+  int samples_ = 0;
+  GLuint scene_fbo_ = 0, scene_color_ = 0, scene_depth_ = 0;
+  int scene_width_ = 0, scene_height_ = 0;
+  std::uint64_t colors_version_ = 1;
+  struct SceneKey {
+    glm::dmat4 matrix{0.0};
+    std::uint64_t geometry = 0, colors = 0;
+    bool smooth = false, wireframe = false, prisms = false, proxy = false;
+    int width = 0, height = 0;
+    bool operator==(const SceneKey& o) const {
+      return matrix == o.matrix && geometry == o.geometry && colors == o.colors &&
+             smooth == o.smooth && wireframe == o.wireframe && prisms == o.prisms &&
+             proxy == o.proxy && width == o.width && height == o.height;
+    }
+  };
+  SceneKey drawn_;
+  glm::dmat4 last_matrix_{0.0};
+  std::chrono::steady_clock::time_point last_motion_;
+  bool drew_proxy_ = false, interactive_ = false;
 
   GLuint pick_fbo_ = 0, pick_id_ = 0, pick_depth_ = 0, pick_z_ = 0;
   int pick_width_ = 0, pick_height_ = 0;
