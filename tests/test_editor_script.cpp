@@ -126,6 +126,7 @@ TEST(EditorScript, ReportAndWaitFile) {
   EXPECT_EQ(cmds[1].kind, ScriptCommand::Kind::WaitFile);
   EXPECT_EQ(cmds[1].seconds, 3.0);
   EXPECT_THROW(parse_script("report @top over 2\n", "s"), Error);
+  EXPECT_EQ(parse_script("move \"@Handle 1\" 3 4\n", "s")[0].handle, "Handle 1");
 
   const std::string flag = testing::TempDir() + "/primo-script-flag";
   std::remove(flag.c_str());

@@ -123,10 +123,10 @@ double Editor::file_task_seconds() const { return task_.valid() ? clock_ - task_
 void Editor::update(double seconds) {
   clock_ += seconds;
   frame_ms_ = frame_ms_ == 0.0 ? 1000.0 * seconds : 0.9 * frame_ms_ + 100.0 * seconds;
-  if (gesture_ == Gesture::DragHandle || gesture_ == Gesture::Gizmo) {
-    ++current_drag_.frames;
-    current_drag_.total_ms += 1000.0 * seconds;
-    current_drag_.max_ms = std::max(current_drag_.max_ms, 1000.0 * seconds);
+  if (gesture_ != Gesture::None) {
+    ++current_gesture_.frames;
+    current_gesture_.total_ms += 1000.0 * seconds;
+    current_gesture_.max_ms = std::max(current_gesture_.max_ms, 1000.0 * seconds);
   }
 
   if (task_.valid() &&
@@ -308,7 +308,10 @@ void Editor::on_mouse_button(const InputEvent& e, bool ui_mouse) {
       break;
     default: break;
   }
-  if (gesture_ == Gesture::None) gesture_button_ = -1;
+  if (gesture_ == Gesture::None)
+    gesture_button_ = -1;
+  else
+    current_gesture_ = {};
 }
 
 void Editor::begin_tool_gesture(int mods) {
@@ -343,7 +346,6 @@ void Editor::begin_tool_gesture(int mods) {
           gizmo_ = std::make_unique<GizmoDrag>(kind, part, camera_, center, cursor_);
           drag_group_ = s.active;
           drag_start_pose_ = s.handles[s.active].pose;
-          current_drag_ = {};
           gesture_ = Gesture::Gizmo;
           return;
         }
@@ -383,7 +385,6 @@ void Editor::begin_tool_gesture(int mods) {
       drag_anchor_ = ray.origin + t * ray.direction;
     }
   }
-  current_drag_ = {};
   gesture_ = Gesture::DragHandle;
 }
 
@@ -432,49 +433,66 @@ void Editor::end_gesture() {
   const Gesture g = gesture_;
   gesture_ = Gesture::None;
   gesture_button_ = -1;
-  if (!doc_) return;
+  std::string what;
   switch (g) {
-    case Gesture::SelectBox:
-    case Gesture::SelectLasso: {
-      std::vector<int> faces;
-      if (glm::length(cursor_ - press_) < 3.0) {
-        const int f = face_at_cursor();  // a click: the face under the cursor
-        if (f >= 0) faces.push_back(f);
-      } else if (g == Gesture::SelectBox) {
-        faces = faces_under(ScreenShape::box(press_, cursor_));
-      } else {
-        lasso_.push_back(cursor_);
-        faces = faces_under(ScreenShape::lasso(lasso_));
-      }
-      FaceMask mask = *doc_->state.selection;
-      apply_selection(mask, faces, select_op_);
-      doc_->state.selection = std::make_shared<const FaceMask>(std::move(mask));
-      lasso_.clear();
-      commit(g == Gesture::SelectBox ? "Box select" : "Lasso select");
-      break;
-    }
-    case Gesture::SelectBrush: commit("Brush select"); break;
-    case Gesture::Paint:
-      commit(tools.paint_layer == PaintLayer::Height ? "Paint stiffness" : "Paint width");
-      break;
-    case Gesture::DragHandle:
-    case Gesture::Gizmo: {
-      const std::string name = doc_->state.handles[drag_group_].name;
-      const char* verb = g == Gesture::DragHandle ? "Drag"
-                         : gizmo_->kind() == GizmoKind::Translate ? "Move" : "Rotate";
-      commit(std::string(verb) + " '" + name + "'");
-      drag_stats_ = current_drag_;
-      if (drag_stats_.frames > 0)
-        std::printf("[primo edit] drag '%s': %d frames, %.1f ms mean, %.1f ms max per frame; "
-                    "solver %.1f ms per iteration\n",
-                    name.c_str(), drag_stats_.frames, drag_stats_.total_ms / drag_stats_.frames,
-                    drag_stats_.max_ms, 1000.0 * status_.seconds_per_iteration);
-      break;
-    }
+    case Gesture::Orbit: what = "orbit"; break;
+    case Gesture::Pan: what = "pan"; break;
+    case Gesture::Zoom: what = "zoom"; break;
     default: break;
+  }
+  if (doc_) {
+    switch (g) {
+      case Gesture::SelectBox:
+      case Gesture::SelectLasso: {
+        std::vector<int> faces;
+        if (glm::length(cursor_ - press_) < 3.0) {
+          const int f = face_at_cursor();  // a click: the face under the cursor
+          if (f >= 0) faces.push_back(f);
+        } else if (g == Gesture::SelectBox) {
+          faces = faces_under(ScreenShape::box(press_, cursor_));
+        } else {
+          lasso_.push_back(cursor_);
+          faces = faces_under(ScreenShape::lasso(lasso_));
+        }
+        FaceMask mask = *doc_->state.selection;
+        apply_selection(mask, faces, select_op_);
+        doc_->state.selection = std::make_shared<const FaceMask>(std::move(mask));
+        lasso_.clear();
+        what = g == Gesture::SelectBox ? "box select" : "lasso select";
+        commit(g == Gesture::SelectBox ? "Box select" : "Lasso select");
+        break;
+      }
+      case Gesture::SelectBrush:
+        what = "brush select";
+        commit("Brush select");
+        break;
+      case Gesture::Paint:
+        what = "paint";
+        commit(tools.paint_layer == PaintLayer::Height ? "Paint stiffness" : "Paint width");
+        break;
+      case Gesture::DragHandle:
+      case Gesture::Gizmo: {
+        const std::string name = doc_->state.handles[drag_group_].name;
+        const char* verb = g == Gesture::DragHandle                ? "Drag"
+                           : gizmo_->kind() == GizmoKind::Translate ? "Move"
+                                                                    : "Rotate";
+        commit(std::string(verb) + " '" + name + "'");
+        what = std::string(g == Gesture::DragHandle ? "drag" : "gizmo") + " '" + name + "'";
+        break;
+      }
+      default: break;
+    }
   }
   gizmo_.reset();
   drag_group_ = -1;
+  if (what.empty()) return;
+  current_gesture_.what = what;
+  gesture_stats_ = current_gesture_;
+  if (gesture_stats_.frames > 0)
+    std::printf("[primo edit] %s: %d frames, %.1f ms mean, %.1f ms max per frame; solver %.1f ms "
+                "per iteration\n",
+                what.c_str(), gesture_stats_.frames, gesture_stats_.total_ms / gesture_stats_.frames,
+                gesture_stats_.max_ms, 1000.0 * status_.seconds_per_iteration);
 }
 
 void Editor::cancel_gesture() {

@@ -157,13 +157,15 @@ class Editor {
   // Window coordinates of a handle's pivot (for scripts); false when there is no such handle.
   bool handle_window_position(const std::string& name, double& x, double& y) const;
 
-  // Frame statistics: time between frames (smoothed) and while dragging a handle.
+  // Frame statistics: time between frames (smoothed), and frame times during the last mouse
+  // gesture (a handle drag, an orbit, a stroke...), also printed on stdout when it ends.
   double frame_ms() const { return frame_ms_; }
-  struct DragStats {
+  struct GestureStats {
+    std::string what;  // "drag 'top'", "orbit", ...
     int frames = 0;
     double total_ms = 0.0, max_ms = 0.0;
   };
-  const DragStats& last_drag_stats() const { return drag_stats_; }
+  const GestureStats& last_gesture_stats() const { return gesture_stats_; }
 
  private:
   void on_mouse_button(const InputEvent& e, bool ui_mouse);
@@ -227,7 +229,7 @@ class Editor {
   std::string error_popup_;
   size_t error_count_ = 0;
   double frame_ms_ = 0.0;
-  DragStats drag_stats_, current_drag_;
+  GestureStats gesture_stats_, current_gesture_;
 };
 
 }  // namespace primo::editor

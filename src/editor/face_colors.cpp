@@ -81,9 +81,11 @@ std::vector<std::uint32_t> face_overlay_colors(const OverlayInputs& in) {
         if (opacity > 0) over(c[f], color, opacity);
       }
   }
+  // Over the heat map, handles and the selection are lighter so the energy shows through.
+  const float dim = in.face_energy ? 0.5f : 1.0f;
   for (size_t g = 0; g < s.handles.size(); ++g) {
     const HandleGroup& h = s.handles[g];
-    float alpha = int(g) == s.active ? 0.8f : 0.55f;
+    float alpha = dim * (int(g) == s.active ? 0.8f : 0.55f);
     if (int(g) == in.hovered_handle) alpha = std::min(1.0f, alpha + 0.2f);
     const Rgb color = handle_color(h);
     for (int f : *h.faces)
@@ -91,7 +93,7 @@ std::vector<std::uint32_t> face_overlay_colors(const OverlayInputs& in) {
   }
   if (s.selection)
     for (int f = 0; f < in.n_faces && f < int(s.selection->size()); ++f)
-      if ((*s.selection)[f]) over(c[f], selection_color(), 0.7f);
+      if ((*s.selection)[f]) over(c[f], selection_color(), dim * 0.7f);
   std::vector<std::uint32_t> packed(c.size());
   std::transform(c.begin(), c.end(), packed.begin(), pack);
   return packed;

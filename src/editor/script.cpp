@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
+#include <iomanip>
 #include <sstream>
 #include <stdexcept>
 
@@ -43,9 +44,9 @@ ScriptCommand parse_line(const std::string& line) {
   in >> word;
   ScriptCommand c;
   std::vector<std::string> args;
-  auto all_args = [&] {
+  auto all_args = [&] {  // "quoted words" may hold spaces: "@Handle 1"
     std::string a;
-    while (in >> a) args.push_back(a);
+    while (in >> std::quoted(a)) args.push_back(a);
   };
   using K = ScriptCommand::Kind;
   if (word == "wait") {

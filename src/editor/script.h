@@ -3,7 +3,7 @@
 // queue as real GLFW input, plus a few commands that call the same actions as the menus.
 // One command per line; '#' starts a comment. Positions are window coordinates, or
 // "@NAME [DX DY]" (the current screen position of handle NAME's pivot, plus an offset) or
-// "center [DX DY]" (the viewport centre).
+// "center [DX DY]" (the viewport centre). Double quotes group words: move "@Handle 1" 10 0.
 //
 //   wait SECONDS                    pause
 //   wait-settled [TIMEOUT]          until the solver has settled and the view shows it (60 s)

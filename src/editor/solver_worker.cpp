@@ -25,7 +25,16 @@ constexpr int kSettleBatch = 4;
 
 }  // namespace
 
-SolveMethod interactive_solve_method() { return SolveMethod::Global; }
+SolveMethod interactive_solve_method(SolverMethod requested, int n_faces) {
+  switch (requested) {
+    case SolverMethod::Global: return SolveMethod::Global;
+    case SolverMethod::Local: return SolveMethod::Local;
+    case SolverMethod::Hierarchical: return SolveMethod::Hierarchical;
+    case SolverMethod::Default: break;
+  }
+  constexpr int kHierarchicalFromFaces = 20000;  // as primo deform (deform_command.cpp)
+  return n_faces > kHierarchicalFromFaces ? SolveMethod::Hierarchical : SolveMethod::Global;
+}
 
 const char* phase_label(SolverPhase phase) {
   switch (phase) {
@@ -227,7 +236,7 @@ void SolverWorker::apply(const SolverTargets& targets) {
 
 void SolverWorker::step() {
   SolveOptions options;
-  options.method = interactive_solve_method();
+  options.method = interactive_solve_method(problem_->spec.method, problem_->topology->n_faces);
   options.tolerance = problem_->spec.tolerance;
   const int done = status().iterations;
   const bool dragging =

@@ -25,8 +25,10 @@
 
 namespace primo::editor {
 
-// The method used for interactive solving. One line to switch (e.g. to a hierarchical solver).
-SolveMethod interactive_solve_method();
+// The method the editor solves with: the scenario's solver.method when it names one, else what
+// `primo deform` picks by default (global Newton up to 20,000 faces, hierarchical above), so
+// that both end at the same result. The one place to change it.
+SolveMethod interactive_solve_method(SolverMethod requested, int n_faces);
 
 struct SolverProblem {
   std::shared_ptr<const Mesh> mesh;

@@ -390,9 +390,10 @@ void solver_section(Editor& e) {
   ImGui::Text("Iterations %d (total %ld)", st.iterations, st.total_iterations);
   ImGui::Text("%.1f ms per iteration, build %.0f ms", 1000.0 * st.seconds_per_iteration, 1000.0 * st.build_seconds);
   ImGui::Text("Frame %.1f ms (%.0f fps)", e.frame_ms(), e.frame_ms() > 0 ? 1000.0 / e.frame_ms() : 0.0);
-  const Editor::DragStats& d = e.last_drag_stats();
+  const Editor::GestureStats& d = e.last_gesture_stats();
   if (d.frames > 0)
-    ImGui::TextDisabled("Last drag: %d frames, %.1f ms mean, %.1f ms max", d.frames, d.total_ms / d.frames, d.max_ms);
+    ImGui::TextDisabled("Last %s: %d frames, %.1f ms mean, %.1f ms max", d.what.c_str(), d.frames,
+                        d.total_ms / d.frames, d.max_ms);
 }
 
 void draw_properties(Editor& e, UiState& ui, float top, float height) {
