@@ -242,3 +242,21 @@ TEST(EditorSession, CommandsWithoutAMeshOrSelectionExplainThemselves) {
   EXPECT_TRUE(s.editor.messages().back().error);
   EXPECT_NE(s.editor.take_error_popup().find("Select faces"), std::string::npos);
 }
+
+TEST(EditorSession, DroppedFilesOpenInTheBackground) {
+  Session s;
+  const std::string path = std::string(PRIMO_SOURCE_DIR) + "/assets/meshes/cylinder.obj";
+  s.editor.handle_event(InputEvent::drop({path}), false, false);
+  EXPECT_TRUE(s.editor.file_task_running());
+  ASSERT_TRUE(s.settle());
+  EXPECT_EQ(s.editor.document()->mesh_path, path);
+  EXPECT_EQ(s.editor.document()->n_faces(), 864);
+  // A file that cannot be read is an error message, and the open document stays.
+  s.editor.handle_event(InputEvent::drop({path + ".missing.obj"}), false, false);
+  for (int i = 0; i < 500 && s.editor.file_task_running(); ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    s.editor.update(0.01);
+  }
+  EXPECT_EQ(s.editor.document()->mesh_path, path);
+  EXPECT_FALSE(s.editor.take_error_popup().empty());
+}

@@ -94,7 +94,9 @@ void Editor::save_mesh(const std::string& path) {
   auto mesh = std::make_shared<Mesh>(*doc_->mesh);
   const std::vector<Vec3>& points = positions();
   for (auto v : mesh->vertices()) mesh->set_point(v, points[v.idx()]);
-  if (!status_.busy() && status_.phase == SolverPhase::Stopped)
+  if (status_.busy())
+    info("Note: the solver is still converging; saving the shape shown now");
+  else if (status_.phase == SolverPhase::Stopped)
     info("Note: the solver stopped at its iteration limit before converging");
   task_label_ = "Saving " + file_name(path);
   task_started_ = clock_;

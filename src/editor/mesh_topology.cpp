@@ -106,7 +106,10 @@ void bounding_sphere(const std::vector<Vec3>& points, Vec3& center, double& radi
     hi = hi.cwiseMax(p);
   }
   center = 0.5 * (lo + hi);
-  radius = std::max(0.5 * (hi - lo).norm(), 1e-9);
+  // The farthest point from the box centre: tighter than half the box diagonal.
+  double r2 = 0.0;
+  for (const Vec3& p : points) r2 = std::max(r2, (p - center).squaredNorm());
+  radius = std::max(std::sqrt(r2), 1e-9);
 }
 
 }  // namespace primo::editor

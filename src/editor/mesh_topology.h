@@ -45,7 +45,7 @@ void compute_vertex_normals(const MeshTopology& topology, const std::vector<Vec3
 // Vertex-average centroid of every face at `points`.
 std::vector<Vec3> face_centroids(const MeshTopology& topology, const std::vector<Vec3>& points);
 
-// Centre and radius of the bounding sphere of the axis-aligned box of `points`.
+// A sphere around `points`: the centre of their bounding box and the largest distance from it.
 void bounding_sphere(const std::vector<Vec3>& points, Vec3& center, double& radius);
 
 }  // namespace primo::editor

@@ -121,7 +121,7 @@ void draw_viewport_overlays(const Editor& e, ImDrawList* dl) {
     }
     default: break;
   }
-  if (e.brush_visible() && e.cursor_in_viewport()) {
+  if (e.brush_visible() && e.cursor_in_viewport() && !ImGui::GetIO().WantCaptureMouse) {
     const float r = float(e.tools.brush_radius);
     ImU32 col = rgba(1, 1, 1, 0.85f);
     if (e.tools.tool == Tool::Paint) {
