@@ -860,17 +860,7 @@ glm::dvec3 Editor::handle_pivot(int index) const {
   const HandleGroup& g = doc_->state.handles[index];
   if (g.mode != HandleMode::Orientation) return to_glm(g.target_center());
   // Orientation-only groups translate freely: measure where they are.
-  const MeshTopology& t = *doc_->topology;
-  const std::vector<Vec3>& p = positions();
-  Vec3 sum = Vec3::Zero();
-  double area = 0.0;
-  for (int f : *g.faces) {
-    Vec3 c = Vec3::Zero();
-    for (int k = t.face_begin[f]; k < t.face_begin[f + 1]; ++k) c += p[t.face_vertices[k]];
-    sum += t.rest_geometry.area[f] * c / double(t.degree(f));
-    area += t.rest_geometry.area[f];
-  }
-  return to_glm(area > 0 ? Vec3(sum / area) : g.target_center());
+  return to_glm(weighted_centroid(*doc_->topology, positions(), *g.faces));
 }
 
 bool Editor::handle_window_position(const std::string& name, double& x, double& y) const {
@@ -887,13 +877,8 @@ bool Editor::handle_window_position(const std::string& name, double& x, double& 
     const std::vector<Vec3>& p = positions();
     const glm::dvec3 eye = camera_.eye();
     for (int f : *g.faces) {
-      const int b = t.face_begin[f], n = t.degree(f);
-      Vec3 c = Vec3::Zero(), a = Vec3::Zero();
-      for (int k = 0; k < n; ++k) c += p[t.face_vertices[b + k]];
-      c /= double(n);
-      for (int k = 0; k < n; ++k)
-        a += (p[t.face_vertices[b + k]] - c).cross(p[t.face_vertices[b + (k + 1) % n]] - c);
-      if (glm::dot(to_glm(a), to_glm(c) - eye) >= 0.0) continue;  // facing away
+      const Vec3 c = face_centroid(t, p, f);
+      if (glm::dot(to_glm(face_vector_area(t, p, f, c)), to_glm(c) - eye) >= 0.0) continue;  // facing away
       const glm::dvec3 w = camera_.project(to_glm(c));
       const double d = glm::length(glm::dvec2(w.x - pivot.x, w.y - pivot.y));
       if (d < best_d) best_d = d, best = w;

@@ -55,17 +55,8 @@ HandleGroup make_handle_group(std::string name, std::vector<int> faces, HandleMo
   });
 
   if (moved && mode == HandleMode::Spring) {
-    double area = 0.0;
-    Vec3 shift = Vec3::Zero();
-    for (int f : faces) {
-      Vec3 c = Vec3::Zero();
-      for (int k = topology.face_begin[f]; k < topology.face_begin[f + 1]; ++k)
-        c += current[topology.face_vertices[k]];
-      c /= double(topology.degree(f));
-      shift += topology.rest_geometry.area[f] * (c - topology.rest_geometry.centroid[f]);
-      area += topology.rest_geometry.area[f];
-    }
-    g.pose.translate = area > 0 ? Vec3(shift / area) : Vec3::Zero();
+    // The spring pulls each face towards its rest centroid plus the offset.
+    g.pose.translate = weighted_centroid(topology, current, faces) - g.center;
   } else if (moved) {
     // Best rigid fit (Horn) of the rest vertices onto the current ones.
     Vec3 rest_mean = Vec3::Zero(), cur_mean = Vec3::Zero();

@@ -62,19 +62,29 @@ MeshTopology build_topology(const Mesh& mesh) {
   return t;
 }
 
+Vec3 face_centroid(const MeshTopology& t, const std::vector<Vec3>& points, int f) {
+  Vec3 c = Vec3::Zero();
+  for (int k = t.face_begin[f]; k < t.face_begin[f + 1]; ++k) c += points[t.face_vertices[k]];
+  return c / double(t.degree(f));
+}
+
+Vec3 face_vector_area(const MeshTopology& t, const std::vector<Vec3>& points, int f,
+                      const Vec3& centroid) {
+  const int b = t.face_begin[f], n = t.degree(f);
+  Vec3 a = Vec3::Zero();
+  for (int k = 0; k < n; ++k)
+    a += (points[t.face_vertices[b + k]] - centroid)
+             .cross(points[t.face_vertices[b + (k + 1) % n]] - centroid);
+  return 0.5 * a;
+}
+
 void compute_vertex_normals(const MeshTopology& topology, const std::vector<Vec3>& points,
                             std::vector<float>& normals) {
   std::vector<Vec3> sum(topology.n_vertices, Vec3::Zero());
   for (int f = 0; f < topology.n_faces; ++f) {
-    const int b = topology.face_begin[f], n = topology.degree(f);
-    Vec3 c = Vec3::Zero();
-    for (int k = 0; k < n; ++k) c += points[topology.face_vertices[b + k]];
-    c /= double(n);
-    Vec3 a = Vec3::Zero();
-    for (int k = 0; k < n; ++k)
-      a += (points[topology.face_vertices[b + k]] - c)
-               .cross(points[topology.face_vertices[b + (k + 1) % n]] - c);
-    for (int k = 0; k < n; ++k) sum[topology.face_vertices[b + k]] += a;
+    const Vec3 a = face_vector_area(topology, points, f, face_centroid(topology, points, f));
+    for (int k = topology.face_begin[f]; k < topology.face_begin[f + 1]; ++k)
+      sum[topology.face_vertices[k]] += a;
   }
   normals.resize(3 * size_t(topology.n_vertices));
   for (int v = 0; v < topology.n_vertices; ++v) {
@@ -85,13 +95,20 @@ void compute_vertex_normals(const MeshTopology& topology, const std::vector<Vec3
 }
 
 std::vector<Vec3> face_centroids(const MeshTopology& topology, const std::vector<Vec3>& points) {
-  std::vector<Vec3> c(topology.n_faces, Vec3::Zero());
-  for (int f = 0; f < topology.n_faces; ++f) {
-    for (int k = topology.face_begin[f]; k < topology.face_begin[f + 1]; ++k)
-      c[f] += points[topology.face_vertices[k]];
-    c[f] /= double(topology.degree(f));
-  }
+  std::vector<Vec3> c(topology.n_faces);
+  for (int f = 0; f < topology.n_faces; ++f) c[f] = face_centroid(topology, points, f);
   return c;
+}
+
+Vec3 weighted_centroid(const MeshTopology& topology, const std::vector<Vec3>& points,
+                       const std::vector<int>& faces) {
+  Vec3 sum = Vec3::Zero();
+  double area = 0.0;
+  for (int f : faces) {
+    sum += topology.rest_geometry.area[f] * face_centroid(topology, points, f);
+    area += topology.rest_geometry.area[f];
+  }
+  return area > 0 ? Vec3(sum / area) : Vec3::Zero();
 }
 
 void bounding_sphere(const std::vector<Vec3>& points, Vec3& center, double& radius) {

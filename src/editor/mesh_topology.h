@@ -42,8 +42,17 @@ MeshTopology build_topology(const Mesh& mesh);
 void compute_vertex_normals(const MeshTopology& topology, const std::vector<Vec3>& points,
                             std::vector<float>& normals);
 
-// Vertex-average centroid of every face at `points`.
+// Vertex-average centroid of face f at `points`, and its Newell vector area (about that
+// centroid; its direction is the face normal, its length the area).
+Vec3 face_centroid(const MeshTopology& topology, const std::vector<Vec3>& points, int f);
+Vec3 face_vector_area(const MeshTopology& topology, const std::vector<Vec3>& points, int f,
+                      const Vec3& centroid);
+// Every face's centroid at `points`.
 std::vector<Vec3> face_centroids(const MeshTopology& topology, const std::vector<Vec3>& points);
+// Mean of the faces' centroids at `points`, weighted by their rest areas (at the rest points:
+// the scenario format's area-weighted centroid).
+Vec3 weighted_centroid(const MeshTopology& topology, const std::vector<Vec3>& points,
+                       const std::vector<int>& faces);
 
 // A sphere around `points`: the centre of their bounding box and the largest distance from it.
 void bounding_sphere(const std::vector<Vec3>& points, Vec3& center, double& radius);

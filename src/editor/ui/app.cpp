@@ -1,6 +1,7 @@
 #include "app.h"
 
 #include <imgui.h>
+#include <imgui_internal.h>
 #include <imgui_impl_glfw.h>
 #include <imgui_impl_opengl3.h>
 
@@ -111,6 +112,7 @@ class App : public ScriptHost {
   void install_callbacks();
 
  private:
+  void frame(double now, double dt);
   void feed_imgui();
   void sync_renderer();
   void take_screenshot(const ViewportRect& vp, int fb_width, int fb_height, bool with_ui_drawn);
@@ -128,6 +130,10 @@ class App : public ScriptHost {
   bool just_pressed_[3] = {false, false, false};
   const MeshTopology* shown_topology_ = nullptr;
   int settled_frames_ = 0;
+  bool screenshot_run_ = false;
+  double start_ = 0.0;
+  size_t errors_seen_ = 0;
+  std::string shown_title_;
   bool quit_ = false;
   int exit_code_ = 0;
 };
@@ -280,6 +286,76 @@ void App::take_screenshot(const ViewportRect& vp, int fb_width, int fb_height, b
   ui_.screenshot_path.clear();
 }
 
+void App::frame(double now, double dt) {
+  if (script_ && !script_->finished()) {
+    script_->update(now, *this);
+    if (script_->failed()) fail(script_->error());
+  }
+  feed_imgui();
+  ImGui_ImplOpenGL3_NewFrame();
+  ImGui_ImplGlfw_NewFrame();
+  ImGuiIO& io = ImGui::GetIO();
+  io.MousePos = ImVec2(float(cursor_.x), float(cursor_.y));
+  for (int b = 0; b < 3; ++b) {
+    io.MouseDown[b] = buttons_[b] || just_pressed_[b];
+    just_pressed_[b] = false;
+  }
+  ImGui::NewFrame();
+
+  int win_w, win_h, fb_w, fb_h;
+  glfwGetWindowSize(window_, &win_w, &win_h);
+  glfwGetFramebufferSize(window_, &fb_w, &fb_h);
+  const float scale = win_w > 0 ? float(fb_w) / float(win_w) : 1.0f;
+  if (ui_.show_panels && ui_.menu_height == 0.0f) ui_.menu_height = ImGui::GetFrameHeight();
+  const ViewportRect vp = viewport_rect(ui_, float(win_w), float(win_h), scale);
+  editor_.set_viewport(vp);
+
+  for (const InputEvent& e : queue_) {
+    if (!io.WantCaptureKeyboard && handle_app_shortcut(e, editor_, ui_)) continue;
+    editor_.handle_event(e, io.WantCaptureMouse, io.WantCaptureKeyboard);
+  }
+  queue_.clear();
+  editor_.update(dt);
+  sync_renderer();
+  draw_ui(editor_, ui_);
+  if (ui_.quit_requested || editor_.quit_requested()) quit_ = true;
+  if (const Document* doc = editor_.document()) {
+    const std::string& name = doc->scenario_path.empty() ? doc->mesh_path : doc->scenario_path;
+    const std::string title = "PriMo - " + std::filesystem::path(name).filename().string();
+    if (title != shown_title_) glfwSetWindowTitle(window_, (shown_title_ = title).c_str());
+  }
+  ImGui::Render();
+
+  glViewport(0, 0, fb_w, fb_h);
+  glClearColor(0.11f, 0.115f, 0.13f, 1.0f);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  const int vx = int(vp.x * scale), vw = int(vp.width * scale), vh = int(vp.height * scale);
+  renderer_->set_interactive(editor_.gesture() != Editor::Gesture::None);
+  renderer_->draw(editor_.display, vx, fb_h - int(vp.y * scale) - vh, vw, vh);
+
+  // A --screenshot run: once the view shows a settled solve (two frames in a row).
+  if (screenshot_run_ && !script_) {
+    if (editor_.error_count() > errors_seen_) {
+      fail("could not prepare the screenshot: " + editor_.messages().back().text);
+    } else if (settled() && ++settled_frames_ >= 2) {
+      ui_.screenshot_path = options_.screenshot;
+      ui_.screenshot_with_ui = options_.screenshot_ui;
+      quit_ = true;
+    } else if (now - start_ > options_.timeout) {
+      fail("the solve did not settle within " + std::to_string(int(options_.timeout)) + " s");
+    }
+  }
+  errors_seen_ = editor_.error_count();
+  if (!ui_.screenshot_path.empty() && !ui_.screenshot_with_ui) take_screenshot(vp, fb_w, fb_h, false);
+  ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+  if (!ui_.screenshot_path.empty()) take_screenshot(vp, fb_w, fb_h, true);
+  glfwSwapBuffers(window_);
+  if (script_ && script_->finished() && screenshot_run_ && !quit_) {
+    ui_.show_panels = options_.screenshot_ui;  // then the --screenshot after the script
+    script_.reset();
+  }
+}
+
 int App::run() {
   install_callbacks();
   float xscale = 1.0f, yscale = 1.0f;
@@ -309,16 +385,15 @@ int App::run() {
       return 2;
     }
   }
-  const bool screenshot_run = !options_.screenshot.empty();
-  if (screenshot_run && !options_.screenshot_ui) ui_.show_panels = false;
+  screenshot_run_ = !options_.screenshot.empty();
+  if (screenshot_run_ && !options_.screenshot_ui) ui_.show_panels = false;
   if (!options_.input.empty()) editor_.open(options_.input);
 
   double last = glfwGetTime();
-  const double start = last;
-  size_t errors_seen = 0;
+  start_ = last;
   while (!quit_ && !glfwWindowShouldClose(window_)) {
     const bool animate = editor_.solver_status().busy() || editor_.file_task_running() || script_ ||
-                         screenshot_run || editor_.gesture() != Editor::Gesture::None ||
+                         screenshot_run_ || editor_.gesture() != Editor::Gesture::None ||
                          editor_.camera().update(0.0) || renderer_->drew_proxy();
     if (animate)
       glfwPollEvents();
@@ -328,73 +403,17 @@ int App::run() {
     const double dt = now - last;
     last = now;
 
-    if (script_ && !script_->finished()) {
-      script_->update(now, *this);
-      if (script_->failed()) fail(script_->error());
-    }
-    feed_imgui();
-    ImGui_ImplOpenGL3_NewFrame();
-    ImGui_ImplGlfw_NewFrame();
-    ImGuiIO& io = ImGui::GetIO();
-    io.MousePos = ImVec2(float(cursor_.x), float(cursor_.y));
-    for (int b = 0; b < 3; ++b) {
-      io.MouseDown[b] = buttons_[b] || just_pressed_[b];
-      just_pressed_[b] = false;
-    }
-    ImGui::NewFrame();
-
-    int win_w, win_h, fb_w, fb_h;
-    glfwGetWindowSize(window_, &win_w, &win_h);
-    glfwGetFramebufferSize(window_, &fb_w, &fb_h);
-    const float scale = win_w > 0 ? float(fb_w) / float(win_w) : 1.0f;
-    if (ui_.show_panels && ui_.menu_height == 0.0f) ui_.menu_height = ImGui::GetFrameHeight();
-    const ViewportRect vp = viewport_rect(ui_, float(win_w), float(win_h), scale);
-    editor_.set_viewport(vp);
-
-    for (const InputEvent& e : queue_) {
-      if (!io.WantCaptureKeyboard && handle_app_shortcut(e, editor_, ui_)) continue;
-      editor_.handle_event(e, io.WantCaptureMouse, io.WantCaptureKeyboard);
-    }
-    queue_.clear();
-    editor_.update(dt);
-    sync_renderer();
-    draw_ui(editor_, ui_);
-    if (ui_.quit_requested || editor_.quit_requested()) quit_ = true;
-    if (const Document* doc = editor_.document()) {
-      const std::string& name = doc->scenario_path.empty() ? doc->mesh_path : doc->scenario_path;
-      const std::string title = "PriMo - " + std::filesystem::path(name).filename().string();
-      static std::string shown;
-      if (title != shown) glfwSetWindowTitle(window_, (shown = title).c_str());
-    }
-    ImGui::Render();
-
-    glViewport(0, 0, fb_w, fb_h);
-    glClearColor(0.11f, 0.115f, 0.13f, 1.0f);
-    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-    const int vx = int(vp.x * scale), vw = int(vp.width * scale), vh = int(vp.height * scale);
-    renderer_->set_interactive(editor_.gesture() != Editor::Gesture::None);
-    renderer_->draw(editor_.display, vx, fb_h - int(vp.y * scale) - vh, vw, vh);
-
-    // A --screenshot run: once the view shows a settled solve (two frames in a row).
-    if (screenshot_run && !script_) {
-      if (editor_.error_count() > errors_seen) {
-        fail("could not prepare the screenshot: " + editor_.messages().back().text);
-      } else if (settled() && ++settled_frames_ >= 2) {
-        ui_.screenshot_path = options_.screenshot;
-        ui_.screenshot_with_ui = options_.screenshot_ui;
-        quit_ = true;
-      } else if (now - start > options_.timeout) {
-        fail("the solve did not settle within " + std::to_string(int(options_.timeout)) + " s");
+    try {
+      frame(now, dt);
+    } catch (const std::exception& e) {
+      // A bug must not take the user's work down: report it and go on with the next frame.
+      if (ImGui::GetCurrentContext()->WithinFrameScope) {
+        ImGui::ErrorCheckEndFrameRecover(nullptr);
+        ImGui::EndFrame();
       }
-    }
-    errors_seen = editor_.error_count();
-    if (!ui_.screenshot_path.empty() && !ui_.screenshot_with_ui) take_screenshot(vp, fb_w, fb_h, false);
-    ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
-    if (!ui_.screenshot_path.empty()) take_screenshot(vp, fb_w, fb_h, true);
-    glfwSwapBuffers(window_);
-    if (script_ && script_->finished() && screenshot_run && !quit_) {
-      ui_.show_panels = options_.screenshot_ui;  // then the --screenshot after the script
-      script_.reset();
+      queue_.clear();
+      editor_.error(std::string("internal error: ") + e.what());
+      if (script_ || screenshot_run_) fail(std::string("internal error: ") + e.what());
     }
   }
   ImGui_ImplOpenGL3_Shutdown();

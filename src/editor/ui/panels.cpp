@@ -617,11 +617,10 @@ void draw_help(UiState& ui) {
   ImGui::End();
 }
 
-void draw_error_popup(Editor& e) {
-  static std::string message;
+void draw_error_popup(Editor& e, UiState& ui) {
   const std::string next = e.take_error_popup();
   if (!next.empty()) {
-    message = next;
+    ui.error_message = next;
     ImGui::OpenPopup("Problem");
   }
   const ImVec2 display = ImGui::GetIO().DisplaySize;
@@ -629,7 +628,7 @@ void draw_error_popup(Editor& e) {
   ImGui::SetNextWindowSize(ImVec2(460, 0), ImGuiCond_Appearing);
   if (ImGui::BeginPopupModal("Problem", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
     ImGui::PushTextWrapPos(440);
-    ImGui::TextUnformatted(message.c_str());
+    ImGui::TextUnformatted(ui.error_message.c_str());
     ImGui::PopTextWrapPos();
     if (ImGui::Button("OK", ImVec2(120, 0)) || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Enter)) ||
         ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape)))
@@ -683,7 +682,7 @@ void draw_ui(Editor& e, UiState& ui) {
     draw_progress(e, e.viewport());
   }
   draw_help(ui);
-  draw_error_popup(e);
+  draw_error_popup(e, ui);
   draw_file_dialog(e, ui);
 }
 

@@ -23,6 +23,7 @@ struct UiState {
   // Layout in window coordinates, measured while drawing.
   float menu_height = 0.0f, toolbar_width = 52.0f, panel_width = 340.0f, status_height = 26.0f;
   bool quit_requested = false;
+  std::string error_message;  // shown in the error popup
 };
 
 // The rectangle left for the 3D view (window coordinates).
