@@ -1,12 +1,45 @@
-// `primo bench engine --quick`: runs headless and reports every figure it promises.
+// `primo bench engine --quick` and `primo bench drag`: run headless and report every figure
+// they promise. Nothing here needs the shared meshes.
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "test_support.h"
+
+namespace {
+
+std::string read_file(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+struct CommandResult {
+  int exit_code = -1;
+  std::string out, err;
+};
+
+CommandResult run_primo(const std::string& arguments) {
+  const std::string dir = primo::test::temp_dir();
+  const std::string command = std::string(PRIMO_EXECUTABLE) + " " + arguments + " >" + dir +
+                              "/out.txt 2>" + dir + "/err.txt";
+  const int status = std::system(command.c_str());
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, read_file(dir + "/out.txt"),
+          read_file(dir + "/err.txt")};
+}
+
+nlohmann::json read_json(const std::string& path) {
+  std::ifstream in(path);
+  return nlohmann::json::parse(in);
+}
+
+}  // namespace
 
 TEST(BenchCli, EngineReportsItsFigures) {
   const std::string dir = primo::test::temp_dir();
@@ -27,4 +60,120 @@ TEST(BenchCli, EngineReportsItsFigures) {
   }
   EXPECT_GE(bench["machine"]["hardware_threads"].get<int>(), 1);
   EXPECT_TRUE(bench["real_mesh"].contains("skipped"));  // --quick skips the real mesh
+}
+
+TEST(BenchCli, DragReportsEveryFigure) {
+  const std::string json = primo::test::temp_dir() + "/drag.json";
+  const CommandResult r =
+      run_primo("bench drag " + primo::test::source_path("assets/scenarios/bar-bend.json") +
+                " --frames 5 --json " + json);
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("median ms"), std::string::npos) << r.out;
+  const nlohmann::json d = read_json(json);
+
+  for (const char* key : {"faces", "frame_seconds", "median_ms", "max_ms", "final_energy",
+                          "converged_energy", "converge_seconds", "peak_memory_mb", "profile",
+                          "full_solve"})
+    EXPECT_TRUE(d.contains(key)) << key;
+  EXPECT_EQ(d["faces"].get<int>(), 672);
+  ASSERT_EQ(d["frame_seconds"].size(), 5u);
+  double longest = 0.0;
+  for (const auto& s : d["frame_seconds"]) {
+    EXPECT_GT(s.get<double>(), 0.0);
+    longest = std::max(longest, s.get<double>());
+  }
+  EXPECT_GT(d["median_ms"].get<double>(), 0.0);
+  EXPECT_LE(d["median_ms"].get<double>(), d["max_ms"].get<double>());
+  EXPECT_NEAR(d["max_ms"].get<double>(), 1e3 * longest, 1e-9);
+
+  // Solving on from the last frame only lowers the energy.
+  const double final_energy = d["final_energy"].get<double>();
+  const double converged = d["converged_energy"].get<double>();
+  EXPECT_TRUE(std::isfinite(final_energy));
+  EXPECT_GT(converged, 0.0);
+  EXPECT_GE(final_energy, converged * (1.0 - 1e-9));
+  EXPECT_GE(d["converge_seconds"].get<double>(), 0.0);
+  EXPECT_EQ(d["converge_tolerance"].get<double>(), 1e-7);
+  EXPECT_GT(d["peak_memory_mb"].get<double>(), 0.0);
+
+  // The drag goes from rest: energies rise frame by frame towards the bent pose.
+  ASSERT_EQ(d["frame_energies"].size(), 5u);
+  EXPECT_GT(d["frame_energies"][4].get<double>(), d["frame_energies"][0].get<double>());
+
+  const nlohmann::json& full = d["full_solve"];
+  EXPECT_GT(full["iterations"].get<int>(), 0);
+  EXPECT_LT(full["energy"].get<double>(), full["initial_energy"].get<double>());
+  EXPECT_GE(full["iterations_to_within"].get<int>(), 1);
+  EXPECT_LE(full["iterations_to_within"].get<int>(), full["iterations"].get<int>());
+  EXPECT_GE(full["seconds_to_within"].get<double>(), 0.0);
+
+  const nlohmann::json& per_frame = d["profile"]["per_frame_ms"];
+  for (const char* key : {"total", "restrict_prolong", "coarse", "assembly", "factorization",
+                          "sweeps", "vertex_update", "other"})
+    EXPECT_TRUE(per_frame.contains(key)) << key;
+  EXPECT_GT(per_frame["total"].get<double>(), 0.0);
+  EXPECT_GT(per_frame["vertex_update"].get<double>(), 0.0);
+  EXPECT_EQ(d["profile"]["per_frame_frames"].get<int>(), 4);
+}
+
+// The shipped bench scenario selects on Spot what --bbox-handles builds on any mesh.
+TEST(BenchCli, DragBenchScenarioMatchesBoundingBoxHandles) {
+  const std::string dir = primo::test::temp_dir();
+  const std::string scenario = primo::test::source_path("assets/scenarios/bench/spot-reach.json");
+  const CommandResult a = run_primo("bench drag " + scenario + " --frames 3 --json " + dir + "/a.json");
+  const CommandResult b = run_primo("bench drag " + scenario + " --frames 3 --bbox-handles --json " +
+                                    dir + "/b.json");
+  ASSERT_EQ(a.exit_code, 0) << a.out << a.err;
+  ASSERT_EQ(b.exit_code, 0) << b.out << b.err;
+  const nlohmann::json ja = read_json(dir + "/a.json"), jb = read_json(dir + "/b.json");
+  EXPECT_EQ(ja["handles_from"].get<std::string>(), "scenario");
+  EXPECT_NE(jb["handles_from"].get<std::string>(), "scenario");
+  EXPECT_EQ(ja["faces"].get<int>(), 2928);
+  EXPECT_EQ(ja["handles"], jb["handles"]);  // the same faces in each handle
+  // The file's translation is the bounding-box figure rounded to 6 digits.
+  ASSERT_EQ(ja["frame_energies"].size(), 3u);
+  for (size_t k = 0; k < 3; ++k)
+    EXPECT_NEAR(ja["frame_energies"][k].get<double>(), jb["frame_energies"][k].get<double>(),
+                1e-6 * jb["frame_energies"][k].get<double>());
+  EXPECT_NEAR(ja["converged_energy"].get<double>(), jb["converged_energy"].get<double>(),
+              1e-6 * jb["converged_energy"].get<double>());
+  // Spot is big enough for a coarse level, so the profile has coarse Newton work in it.
+  EXPECT_GE(ja["hierarchy_bodies"].size(), 2u);
+  EXPECT_GT(ja["profile"]["per_frame_ms"]["factorization"].get<double>(), 0.0);
+}
+
+TEST(BenchCli, DragLoopSubdividesTriangleMeshesOnly) {
+  const std::string dir = primo::test::temp_dir();
+  const CommandResult gen = run_primo("generate cylinder --segments 8 --bands 6 --triangles -o " +
+                                      dir + "/tube.obj");
+  ASSERT_EQ(gen.exit_code, 0) << gen.err;
+  const std::string scenario = primo::test::source_path("assets/scenarios/bar-bend.json");
+  const CommandResult r = run_primo("bench drag " + scenario + " --mesh " + dir +
+                                    "/tube.obj --subdivide 1 --bbox-handles --frames 2 "
+                                    "--solver global --json " + dir + "/d.json");
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  const nlohmann::json d = read_json(dir + "/d.json");
+  EXPECT_EQ(d["faces"].get<int>(), 4 * 8 * 6 * 2);
+  EXPECT_EQ(d["solver"].get<std::string>(), "global");
+  EXPECT_GE(d["final_energy"].get<double>(), d["converged_energy"].get<double>() * (1.0 - 1e-9));
+
+  // The bar is made of quads: Loop subdivision refuses it with one clear line.
+  const CommandResult quads = run_primo("bench drag " + scenario + " --subdivide 1 --frames 2");
+  EXPECT_NE(quads.exit_code, 0);
+  EXPECT_NE(quads.err.find("triangle"), std::string::npos) << quads.err;
+}
+
+TEST(BenchCli, DragSkipsAMissingSharedMeshButNotAMissingPath) {
+  const std::string dir = primo::test::temp_dir();
+  const std::string scenario = primo::test::source_path("assets/scenarios/bar-bend.json");
+  const CommandResult skipped = run_primo("bench drag " + scenario +
+                                          " --mesh no_such_mesh_4711.obj --json " + dir + "/s.json");
+  EXPECT_EQ(skipped.exit_code, 0) << skipped.err;
+  EXPECT_NE(skipped.out.find("skipped"), std::string::npos) << skipped.out;
+  EXPECT_TRUE(read_json(dir + "/s.json").contains("skipped"));
+
+  const CommandResult missing =
+      run_primo("bench drag " + scenario + " --mesh " + dir + "/none.obj --frames 2");
+  EXPECT_NE(missing.exit_code, 0);
+  EXPECT_NE(missing.err.find("no such mesh file"), std::string::npos) << missing.err;
 }

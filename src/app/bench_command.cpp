@@ -1,16 +1,21 @@
 // `primo bench engine [--mesh PATH] [--json FILE] [--quick]`
+// `primo bench drag SCENARIO.json [--frames N] [--solver S] [--json FILE] [--mesh MESH]
+//                   [--subdivide K] [--bbox-handles]` (below, after the engine benchmark)
 //
 // Measures the engine against the figures the paper quotes (Sect. 4: 67k local matches/s and
 // 6,500 global prism updates/s on a 3.2 GHz Pentium 4; < 10 global iterations even for extreme
 // deformations): local and global throughput and Newton iteration counts on a limb-like
 // cylinder, and a global solve of a ~30k-face real mesh. Prints a table; --json writes the same
-// figures. `bench` is a group so that later benchmarks (`bench drag`) sit beside `engine`.
+// figures. `bench` is a group, so `bench drag` sits beside `engine`.
+
+#include <sys/resource.h>
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -26,9 +31,15 @@
 #include "primo/error.h"
 #include "primo/geometry.h"
 #include "primo/global_solver.h"
+#include "primo/hierarchical_solver.h"
 #include "primo/local_solver.h"
 #include "primo/mesh_generators.h"
 #include "primo/mesh_io.h"
+#include "primo/scenario.h"
+
+// After primo/mesh.h (via the headers above): the Eigen vector traits come first.
+#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
+#include <OpenMesh/Tools/Subdivider/Uniform/LoopT.hh>
 
 namespace fs = std::filesystem;
 
@@ -287,9 +298,9 @@ struct RealMeshRun {
   }
 };
 
-// The default mesh lives in the shared folder beside the repository; look for it upward from
-// the working directory and from the executable, since either may be inside the repository.
-std::string find_default_mesh() {
+// The benchmark meshes live in the shared folder beside the repository; look for them upward
+// from the working directory and from the executable, since either may be inside the repository.
+std::string find_shared_mesh(const std::string& name) {
   std::vector<fs::path> starts;
   std::error_code ec;
   starts.push_back(fs::current_path(ec));
@@ -297,7 +308,7 @@ std::string find_default_mesh() {
   if (!ec) starts.push_back(exe.parent_path());
   for (fs::path dir : starts) {
     for (int level = 0; level <= 4 && !dir.empty(); ++level) {
-      const fs::path candidate = dir / "shared" / "meshes" / kDefaultMeshName;
+      const fs::path candidate = dir / "shared" / "meshes" / name;
       if (fs::is_regular_file(candidate, ec)) return candidate.string();
       if (dir == dir.parent_path()) break;
       dir = dir.parent_path();
@@ -307,7 +318,47 @@ std::string find_default_mesh() {
 }
 
 // Bottom tenth (in y) fixed; top tenth turned 30 degrees about x through its centroid and
-// pushed along +z by a tenth of the bounding-box diagonal: a reach-forward pose.
+// pushed along +z by a tenth of the bounding-box diagonal: a reach-forward pose. Any mesh.
+struct ReachPose {
+  std::vector<int> bottom;
+  std::vector<int> top;
+  Vec3 top_centroid = Vec3::Zero();
+  Vec3 translate = Vec3::Zero();
+  Vec3 axis = Vec3::UnitX();
+  double angle_deg = 30.0;
+
+  RigidTransform top_motion() const {
+    return make_rigid_transform(translate, axis, angle_deg, top_centroid);
+  }
+  std::vector<Handle> handles() const {
+    return {{"bottom", bottom, Fix::All, RigidTransform::identity()},
+            {"top", top, Fix::All, top_motion()}};
+  }
+};
+
+ReachPose make_reach_pose(const Mesh& mesh, const std::string& source) {
+  const FaceGeometry faces = compute_face_geometry(mesh);
+  double y_min = INFINITY, y_max = -INFINITY;
+  for (auto v : mesh.vertices()) {
+    y_min = std::min(y_min, mesh.point(v).y());
+    y_max = std::max(y_max, mesh.point(v).y());
+  }
+  const double y_extent = y_max - y_min;
+  ReachPose pose;
+  for (int f = 0; f < int(mesh.n_faces()); ++f) {
+    const double y = faces.centroid[f].y();
+    if (y < y_min + 0.1 * y_extent)
+      pose.bottom.push_back(f);
+    else if (y > y_max - 0.1 * y_extent)
+      pose.top.push_back(f);
+  }
+  if (pose.bottom.empty() || pose.top.empty())
+    throw Error(source + ": no faces in the bottom or top tenth of the bounding box");
+  pose.top_centroid = area_weighted_centroid(faces, pose.top);
+  pose.translate = Vec3(0.0, 0.0, 0.1 * bounding_box_diagonal(mesh));
+  return pose;
+}
+
 RealMeshRun run_real_mesh(const std::string& path) {
   RealMeshRun run;
   run.path = path;
@@ -316,31 +367,7 @@ RealMeshRun run_real_mesh(const std::string& path) {
   run.load_seconds = seconds_since(start);
   run.faces = int(mesh.n_faces());
   run.vertices = int(mesh.n_vertices());
-
-  const FaceGeometry faces = compute_face_geometry(mesh);
-  double y_min = INFINITY, y_max = -INFINITY;
-  for (auto v : mesh.vertices()) {
-    y_min = std::min(y_min, mesh.point(v).y());
-    y_max = std::max(y_max, mesh.point(v).y());
-  }
-  const double y_extent = y_max - y_min;
-  std::vector<int> bottom, top;
-  for (int f = 0; f < run.faces; ++f) {
-    const double y = faces.centroid[f].y();
-    if (y < y_min + 0.1 * y_extent)
-      bottom.push_back(f);
-    else if (y > y_max - 0.1 * y_extent)
-      top.push_back(f);
-  }
-  if (bottom.empty() || top.empty())
-    throw Error(path + ": no faces in the bottom or top tenth of the bounding box");
-  const Vec3 top_centroid = area_weighted_centroid(faces, top);
-  const double diagonal = bounding_box_diagonal(mesh);
-  std::vector<Handle> handles = {
-      {"bottom", bottom, Fix::All, RigidTransform::identity()},
-      {"top", top, Fix::All,
-       make_rigid_transform(Vec3(0.0, 0.0, 0.1 * diagonal), Vec3::UnitX(), 30.0, top_centroid)},
-  };
+  std::vector<Handle> handles = make_reach_pose(mesh, path).handles();
 
   start = Clock::now();
   Deformer deformer(mesh, PrismParameters{}, std::move(handles));
@@ -500,7 +527,7 @@ int run_bench_engine(const BenchEngineArguments& args) {
   if (mesh_path.empty()) {
     if (args.quick)
       skipped = "skipped: --quick (pass --mesh to run it anyway)";
-    else if ((mesh_path = find_default_mesh()).empty())
+    else if ((mesh_path = find_shared_mesh(kDefaultMeshName)).empty())
       skipped = std::string("skipped: ") + kDefaultMeshName + " not found (pass --mesh)";
   }
   std::printf(
@@ -550,6 +577,610 @@ int run_bench_engine(const BenchEngineArguments& args) {
   return 0;
 }
 
+// =============================================================================================
+// `primo bench drag SCENARIO.json [--frames N] [--solver S] [--json FILE] [--mesh MESH]
+//                   [--subdivide K] [--bbox-handles]`
+//
+// An interactive drag: every handle goes from rest to its scenario transform in N equal steps,
+// with one solver iteration (one hierarchical cycle, one global Newton iteration or one local
+// sweep) and one read of the vertex positions per frame, as the editor does while a handle is
+// dragged. Then the solve continues to convergence, and a fresh deformer solves the final pose
+// from rest. docs/performance.md describes every figure.
+
+struct BenchDragArguments {
+  std::string scenario;
+  int frames = 60;
+  std::string solver = "hierarchical";
+  std::string json;
+  std::string mesh;
+  int subdivide = 0;
+  bool bbox_handles = false;
+};
+
+constexpr double kDragConvergeTolerance = 1e-7;
+constexpr int kDragConvergeMaxIterations = 5000;
+constexpr double kPerceivedGap = 0.01;  // "within 1% of the converged energy"
+
+// A handle's way from rest to its target: transform(s) for s in [0, 1], the rotation angle
+// and the translation scaled by s about the same centre. s = 1 gives the scenario's transform.
+struct HandlePath {
+  Vec3 translate = Vec3::Zero();
+  Vec3 axis = Vec3::UnitZ();
+  double angle_deg = 0.0;
+  Vec3 center = Vec3::Zero();
+
+  RigidTransform at(double s) const {
+    return make_rigid_transform(s * translate, axis, s * angle_deg, center);
+  }
+};
+
+// Everything the runs need: the mesh after --mesh/--subdivide, prisms, handles at their final
+// transforms with their paths, and forces at their final offsets.
+struct DragCase {
+  std::string mesh_path;
+  Mesh mesh;
+  double load_seconds = 0.0;
+  double subdivide_seconds = 0.0;
+  std::string handles_from;
+  PrismParameters prisms;
+  std::vector<Handle> handles;
+  std::vector<HandlePath> paths;
+  std::vector<Force> forces;
+};
+
+// --- Loop subdivision through OpenMesh's packaged subdivider ----------------------------------
+
+struct LoopTraits : OpenMesh::DefaultTraits {
+  using Point = OpenMesh::Vec3d;
+  using Normal = OpenMesh::Vec3d;
+};
+using LoopMesh = OpenMesh::TriMesh_ArrayKernelT<LoopTraits>;
+
+Mesh loop_subdivide(const Mesh& mesh, int steps, const std::string& source) {
+  LoopMesh tri;
+  std::vector<LoopMesh::VertexHandle> vertices;
+  vertices.reserve(mesh.n_vertices());
+  for (auto v : mesh.vertices()) {
+    const Vec3& p = mesh.point(v);
+    vertices.push_back(tri.add_vertex(LoopMesh::Point(p.x(), p.y(), p.z())));
+  }
+  std::vector<LoopMesh::VertexHandle> corners;
+  for (auto f : mesh.faces()) {
+    corners.clear();
+    for (auto v : mesh.fv_range(f)) corners.push_back(vertices[size_t(v.idx())]);
+    if (corners.size() != 3)
+      throw Error(source + ": --subdivide needs a triangle mesh (Loop subdivision), but face " +
+                  std::to_string(f.idx()) + " has " + std::to_string(corners.size()) + " sides");
+    if (!tri.add_face(corners).is_valid())
+      throw Error(source + ": OpenMesh refused face " + std::to_string(f.idx()) +
+                  " while copying the mesh for subdivision");
+  }
+  OpenMesh::Subdivider::Uniform::LoopT<LoopMesh, double> loop;
+  if (!loop.attach(tri) || !loop(size_t(steps)))
+    throw Error(source + ": Loop subdivision failed");
+  loop.detach();
+
+  PolygonSoup soup;
+  soup.points.reserve(tri.n_vertices());
+  for (auto v : tri.vertices()) {
+    const LoopMesh::Point& p = tri.point(v);
+    soup.points.emplace_back(p[0], p[1], p[2]);
+  }
+  soup.faces.reserve(tri.n_faces());
+  for (auto f : tri.faces()) {
+    std::vector<int> face;
+    for (auto v : tri.fv_range(f)) face.push_back(v.idx());
+    soup.faces.push_back(std::move(face));
+  }
+  return mesh_from_soup(soup, source + " after " + std::to_string(steps) + " Loop steps");
+}
+
+// --- Setting up ---------------------------------------------------------------------------------
+
+// --mesh as given, or a bare file name looked up in the shared meshes folder; "" if neither.
+std::string locate_mesh(const std::string& mesh) {
+  std::error_code ec;
+  if (fs::is_regular_file(mesh, ec)) return mesh;
+  if (fs::path(mesh).has_parent_path()) return "";
+  return find_shared_mesh(mesh);
+}
+
+DragCase make_drag_case(const Scenario& scenario, const std::string& mesh_path,
+                        const BenchDragArguments& args) {
+  DragCase c;
+  c.mesh_path = mesh_path;
+  auto start = Clock::now();
+  c.mesh = load_mesh(mesh_path);
+  c.load_seconds = seconds_since(start);
+  if (args.subdivide > 0) {
+    start = Clock::now();
+    c.mesh = loop_subdivide(c.mesh, args.subdivide, mesh_path);
+    c.subdivide_seconds = seconds_since(start);
+  }
+
+  if (args.bbox_handles) {
+    // Only the scenario's global prism parameters are kept: its regions, handles and forces
+    // select faces of its own mesh.
+    Scenario prisms_only = scenario;
+    prisms_only.regions.clear();
+    prisms_only.handles.clear();
+    prisms_only.forces.clear();
+    c.prisms = resolve_scenario(prisms_only, c.mesh).prisms;
+    const ReachPose pose = make_reach_pose(c.mesh, mesh_path);
+    c.handles = pose.handles();
+    c.paths = {HandlePath{}, HandlePath{pose.translate, pose.axis, pose.angle_deg,
+                                        pose.top_centroid}};
+    c.handles_from = "bounding box (--bbox-handles)";
+    return c;
+  }
+
+  ResolvedScenario resolved = resolve_scenario(scenario, c.mesh);
+  c.prisms = std::move(resolved.prisms);
+  c.handles = std::move(resolved.handles);
+  c.forces = std::move(resolved.forces);
+  const FaceGeometry geometry = compute_face_geometry(c.mesh);
+  for (size_t i = 0; i < c.handles.size(); ++i) {
+    const TransformSpec& t = scenario.handles[i].transform;
+    c.paths.push_back({t.translate, t.axis, t.angle_deg,
+                       t.center ? *t.center : area_weighted_centroid(geometry, c.handles[i].faces)});
+  }
+  c.handles_from = "scenario";
+  return c;
+}
+
+SolveMethod drag_method(const std::string& name) {
+  if (name == "global") return SolveMethod::Global;
+  if (name == "local") return SolveMethod::Local;
+  return SolveMethod::Hierarchical;
+}
+
+// --- Measuring ----------------------------------------------------------------------------------
+
+double peak_memory_mb() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return double(usage.ru_maxrss) / 1024.0;  // Linux: KiB
+}
+
+std::vector<double> load_average() {
+  std::ifstream in("/proc/loadavg");
+  std::vector<double> load(3, -1.0);
+  for (double& l : load) in >> l;
+  return load;
+}
+
+// The solvers' accumulated phase timings at one moment; differences give a phase's share.
+struct SolverClock {
+  double restrict_prolong = 0.0;
+  double coarse = 0.0;
+  double sweeps = 0.0;
+  int cycles = 0;
+  GlobalSolverTimings newton;  // the coarse level's solver (hierarchical) or the global solver
+
+  static SolverClock read(const Deformer& deformer) {
+    SolverClock c;
+    if (const HierarchicalSolver* h = deformer.hierarchical_solver()) {
+      c.restrict_prolong = h->timings().restrict_prolong;
+      c.coarse = h->timings().coarse;
+      c.sweeps = h->timings().sweeps;
+      c.cycles = h->timings().cycles;
+      if (const GlobalSolver* g = h->coarse_solver()) c.newton = g->timings();
+    } else if (const GlobalSolver* g = deformer.global_solver()) {
+      c.newton = g->timings();
+    }
+    return c;
+  }
+};
+
+// Where the wall time of a phase went, in seconds. `other` is what no solver timer covers:
+// energy evaluations in Deformer::solve and after each cycle, local sweeps of the Local
+// method, building the hierarchy or the global solver's analysis on first use.
+struct Breakdown {
+  double total = 0.0;
+  double set_targets = 0.0;
+  double restrict_prolong = 0.0;
+  double coarse = 0.0;
+  double assembly = 0.0;
+  double factorization = 0.0;
+  double solve = 0.0;
+  double line_search = 0.0;
+  double sweeps = 0.0;
+  double vertex_update = 0.0;
+  int factorizations = 0;
+
+  double newton() const { return assembly + factorization + solve + line_search; }
+  double other() const {
+    // The coarse phase contains the coarse Newton parts; the global method has no coarse phase.
+    const double solver = restrict_prolong + sweeps + std::max(coarse, newton());
+    return total - set_targets - vertex_update - solver;
+  }
+  void add_solver(const SolverClock& before, const SolverClock& after) {
+    restrict_prolong += after.restrict_prolong - before.restrict_prolong;
+    coarse += after.coarse - before.coarse;
+    sweeps += after.sweeps - before.sweeps;
+    assembly += after.newton.assembly - before.newton.assembly;
+    factorization += after.newton.factorization - before.newton.factorization;
+    solve += after.newton.solve - before.newton.solve;
+    line_search += after.newton.line_search - before.newton.line_search;
+    factorizations += after.newton.factorizations - before.newton.factorizations;
+  }
+  Breakdown per(int n) const {
+    Breakdown b = *this;
+    const double k = n > 0 ? 1.0 / n : 0.0;
+    for (double* x : {&b.total, &b.set_targets, &b.restrict_prolong, &b.coarse, &b.assembly,
+                      &b.factorization, &b.solve, &b.line_search, &b.sweeps, &b.vertex_update})
+      *x *= k;
+    return b;
+  }
+  nlohmann::json to_json_ms() const {
+    return {{"total", 1e3 * total},
+            {"set_targets", 1e3 * set_targets},
+            {"restrict_prolong", 1e3 * restrict_prolong},
+            {"coarse", 1e3 * coarse},
+            {"assembly", 1e3 * assembly},
+            {"factorization", 1e3 * factorization},
+            {"solve", 1e3 * solve},
+            {"line_search", 1e3 * line_search},
+            {"sweeps", 1e3 * sweeps},
+            {"vertex_update", 1e3 * vertex_update},
+            {"other", 1e3 * other()},
+            {"factorizations", factorizations}};
+  }
+};
+
+struct DragRun {
+  int faces = 0;
+  int vertices = 0;
+  double setup_seconds = 0.0;  // Deformer construction
+  std::vector<double> frame_seconds;
+  std::vector<double> frame_energies;
+  Breakdown first_frame;
+  Breakdown later_frames;  // sum over frames 2..N
+  double energy_evaluation_seconds = 0.0;
+  std::vector<int> level_bodies;  // hierarchical: bodies per level, fine first
+  SolveReport converge;
+  Breakdown converge_profile;
+  double memory_after_drag_mb = 0.0;
+};
+
+struct FullSolveRun {
+  double setup_seconds = 0.0;
+  double hierarchy_build_seconds = -1.0;  // hierarchical only, timed on a separate solver
+  SolveReport report;
+  Breakdown profile;
+  int iterations_to_perceived = -1;
+  double seconds_to_perceived = -1.0;
+  double memory_after_mb = 0.0;
+};
+
+double median_of(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  const size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+void set_targets(Deformer& deformer, const DragCase& c, double s) {
+  for (size_t i = 0; i < c.paths.size(); ++i) deformer.set_handle_transform(int(i), c.paths[i].at(s));
+  for (size_t j = 0; j < c.forces.size(); ++j)
+    deformer.set_force_offset(int(j), s * c.forces[j].target_offset);
+}
+
+double g_sink = 0.0;  // keeps the vertex read from being optimized away
+
+DragRun run_drag(const DragCase& c, SolveMethod method, int frames) {
+  DragRun run;
+  run.faces = int(c.mesh.n_faces());
+  run.vertices = int(c.mesh.n_vertices());
+  auto start = Clock::now();
+  Deformer deformer(c.mesh, c.prisms, c.handles, c.forces);
+  run.setup_seconds = seconds_since(start);
+  set_targets(deformer, c, 0.0);  // every handle and force back at rest
+  deformer.reset();
+
+  SolveOptions frame;
+  frame.method = method;
+  frame.max_iterations = 1;
+  frame.tolerance = 0.0;
+  for (int k = 1; k <= frames; ++k) {
+    const SolverClock before = SolverClock::read(deformer);
+    const auto t0 = Clock::now();
+    set_targets(deformer, c, double(k) / frames);
+    const auto t1 = Clock::now();
+    const SolveReport report = deformer.solve(frame);
+    const auto t2 = Clock::now();
+    const std::vector<Vec3> positions = deformer.vertex_positions();
+    const auto t3 = Clock::now();
+    g_sink += positions.empty() ? 0.0 : positions.back().x();
+
+    Breakdown& b = k == 1 ? run.first_frame : run.later_frames;
+    b.total += std::chrono::duration<double>(t3 - t0).count();
+    b.set_targets += std::chrono::duration<double>(t1 - t0).count();
+    b.vertex_update += std::chrono::duration<double>(t3 - t2).count();
+    b.add_solver(before, SolverClock::read(deformer));
+    run.frame_seconds.push_back(std::chrono::duration<double>(t3 - t0).count());
+    run.frame_energies.push_back(report.energy);
+  }
+  if (const HierarchicalSolver* h = deformer.hierarchical_solver())
+    for (int l = 0; l < h->levels(); ++l) run.level_bodies.push_back(h->bodies(l));
+
+  // One energy evaluation, for reading "other": Deformer::solve evaluates the energy before
+  // iterating, and a hierarchical cycle once more after its sweeps.
+  start = Clock::now();
+  constexpr int kEvaluations = 5;
+  for (int i = 0; i < kEvaluations; ++i) g_sink += deformer.energy();
+  run.energy_evaluation_seconds = seconds_since(start) / kEvaluations;
+
+  SolveOptions converge;
+  converge.method = method;
+  converge.max_iterations = kDragConvergeMaxIterations;
+  converge.tolerance = kDragConvergeTolerance;
+  const SolverClock before = SolverClock::read(deformer);
+  start = Clock::now();
+  run.converge = deformer.solve(converge);
+  run.converge_profile.total = seconds_since(start);
+  run.converge_profile.add_solver(before, SolverClock::read(deformer));
+  run.memory_after_drag_mb = peak_memory_mb();
+  return run;
+}
+
+// A fresh deformer with the final targets (its initial state), solved to convergence; then,
+// on another fresh one, the same solve cut off at the first iteration within 1% of the
+// converged energy, timed: the iterations are deterministic, so it is the same path.
+FullSolveRun run_full_solve(const DragCase& c, SolveMethod method) {
+  FullSolveRun run;
+  SolveOptions options;
+  options.method = method;
+  options.max_iterations = kDragConvergeMaxIterations;
+  options.tolerance = kDragConvergeTolerance;
+  {
+    auto start = Clock::now();
+    Deformer deformer(c.mesh, c.prisms, c.handles, c.forces);
+    run.setup_seconds = seconds_since(start);
+    if (method == SolveMethod::Hierarchical) {
+      start = Clock::now();
+      { HierarchicalSolver build_only(deformer.system(), options.hierarchical); }
+      run.hierarchy_build_seconds = seconds_since(start);
+    }
+    const SolverClock before = SolverClock::read(deformer);
+    start = Clock::now();
+    run.report = deformer.solve(options);
+    run.profile.total = seconds_since(start);
+    run.profile.add_solver(before, SolverClock::read(deformer));
+  }
+  const double target = (1.0 + kPerceivedGap) * run.report.energy;
+  for (size_t k = 0; k < run.report.energies.size(); ++k)
+    if (run.report.energies[k] <= target) {
+      run.iterations_to_perceived = int(k) + 1;
+      break;
+    }
+  if (run.report.initial_energy <= target) run.iterations_to_perceived = 0;
+  if (run.iterations_to_perceived > 0) {
+    Deformer deformer(c.mesh, c.prisms, c.handles, c.forces);
+    SolveOptions cut = options;
+    cut.max_iterations = run.iterations_to_perceived;
+    run.seconds_to_perceived = deformer.solve(cut).seconds;
+  } else if (run.iterations_to_perceived == 0) {
+    run.seconds_to_perceived = 0.0;
+  }
+  run.memory_after_mb = peak_memory_mb();
+  return run;
+}
+
+// --- Reporting ----------------------------------------------------------------------------------
+
+void print_breakdown_row(const char* label, const Breakdown& b, SolveMethod method) {
+  std::printf("  %-22s %9.2f %8.2f %8.2f", label, 1e3 * b.total, 1e3 * b.set_targets,
+              1e3 * b.restrict_prolong);
+  if (method == SolveMethod::Hierarchical)
+    std::printf(" %8.2f", 1e3 * b.coarse);
+  else
+    std::printf(" %8s", "-");
+  std::printf(" %8.2f %8.2f %8.2f %8.2f %8.2f %8.2f %8.2f\n", 1e3 * b.assembly,
+              1e3 * b.factorization, 1e3 * b.solve, 1e3 * b.line_search, 1e3 * b.sweeps,
+              1e3 * b.vertex_update, 1e3 * b.other());
+}
+
+const char* method_label(SolveMethod m) {
+  switch (m) {
+    case SolveMethod::Global: return "global";
+    case SolveMethod::Local: return "local";
+    case SolveMethod::Hierarchical: break;
+  }
+  return "hierarchical";
+}
+
+void check_drag_arguments(const BenchDragArguments& args) {
+  std::error_code ec;
+  if (!args.json.empty()) {
+    const fs::path folder = fs::absolute(fs::path(args.json)).parent_path();
+    if (!fs::is_directory(folder, ec))
+      throw Error(args.json + ": the folder " + folder.string() + " does not exist");
+  }
+}
+
+int run_bench_drag(const BenchDragArguments& args) {
+  check_drag_arguments(args);
+  const Scenario scenario = load_scenario(args.scenario);
+  const SolveMethod method = drag_method(args.solver);
+#ifdef NDEBUG
+  const char* build = "optimized (NDEBUG)";
+#else
+  const char* build = "debug (assertions on): figures are not representative";
+#endif
+  const std::vector<double> load_before = load_average();
+  const char* blas_threads = std::getenv("OPENBLAS_NUM_THREADS");
+
+  nlohmann::json out;
+  out["scenario"] = args.scenario;
+  out["build"] = build;
+  out["solver"] = method_label(method);
+  out["frames"] = args.frames;
+  out["subdivide"] = args.subdivide;
+  out["bbox_handles"] = args.bbox_handles;
+  std::printf("primo bench drag %s  [build: %s]\n\n", args.scenario.c_str(), build);
+
+  std::string mesh_path = scenario.mesh_path;
+  if (!args.mesh.empty()) {
+    mesh_path = locate_mesh(args.mesh);
+    if (mesh_path.empty() && fs::path(args.mesh).has_parent_path())
+      throw Error(args.mesh + ": no such mesh file");
+    if (mesh_path.empty()) {  // a shared mesh that is not there: skip, as bench engine does
+      const std::string skipped = "skipped: " + args.mesh +
+                                  " not found (neither as a path nor in a shared/meshes folder "
+                                  "above the working directory or the executable)";
+      std::printf("%s\n", skipped.c_str());
+      out["skipped"] = skipped;
+      if (!args.json.empty()) write_text_atomically(args.json, out.dump(2) + "\n");
+      return 0;
+    }
+  }
+
+  const DragCase c = make_drag_case(scenario, mesh_path, args);
+  const double memory_after_mesh = peak_memory_mb();
+  std::printf("Mesh       %s", mesh_path.c_str());
+  if (args.subdivide > 0) std::printf(" + %d Loop steps", args.subdivide);
+  std::printf(": %d faces, %d vertices (load %.2f s", int(c.mesh.n_faces()),
+              int(c.mesh.n_vertices()), c.load_seconds);
+  if (args.subdivide > 0) std::printf(", subdivide %.2f s", c.subdivide_seconds);
+  std::printf(")\n");
+  std::printf("Handles    from the %s:", c.handles_from.c_str());
+  for (const Handle& h : c.handles)
+    std::printf(" %s (%zu faces)", h.name.empty() ? "-" : h.name.c_str(), h.faces.size());
+  std::printf("; %zu forces\n", c.forces.size());
+  std::printf("Solver     %s, %d frames of one iteration each; then to relative change %.0e\n\n",
+              method_label(method), args.frames, kDragConvergeTolerance);
+  std::fflush(stdout);
+
+  // 1: the drag, then on to convergence.
+  const DragRun drag = run_drag(c, method, args.frames);
+  const double median_ms = 1e3 * median_of(drag.frame_seconds);
+  const double max_ms = 1e3 * *std::max_element(drag.frame_seconds.begin(), drag.frame_seconds.end());
+  const double max_later_ms =
+      drag.frame_seconds.size() > 1
+          ? 1e3 * *std::max_element(drag.frame_seconds.begin() + 1, drag.frame_seconds.end())
+          : max_ms;
+  const double final_energy = drag.frame_energies.back();
+  const double converged_energy = drag.converge.energy;
+  const double gap = converged_energy > 0 ? final_energy / converged_energy - 1.0 : 0.0;
+  if (!drag.level_bodies.empty()) {
+    std::printf("Hierarchy  %zu levels, bodies:", drag.level_bodies.size());
+    for (size_t l = 0; l < drag.level_bodies.size(); ++l)
+      std::printf("%s %d", l ? " ->" : "", drag.level_bodies[l]);
+    std::printf("\n\n");
+  }
+  std::printf("Drag (%d frames; deformer setup %.3f s, not in the frames)\n", args.frames,
+              drag.setup_seconds);
+  std::printf("  %8s %10s %10s %10s %10s %14s %14s %8s %10s %6s\n", "faces", "median ms",
+              "max ms", "first ms", "max 2..N", "final energy", "converged E", "gap %",
+              "converge s", "iters");
+  std::printf("  %8d %10.2f %10.2f %10.2f %10.2f %14.6e %14.6e %8.3f %10.3f %6d  %s\n",
+              drag.faces, median_ms, max_ms, 1e3 * drag.frame_seconds.front(), max_later_ms,
+              final_energy, converged_energy, 100.0 * gap, drag.converge.seconds,
+              drag.converge.iterations, drag.converge.stop_reason.c_str());
+  std::printf("\n");
+
+  const int later = int(drag.frame_seconds.size()) - 1;
+  std::printf("Where the time goes (ms; 'coarse' contains the coarse Newton columns after it)\n");
+  std::printf("  %-22s %9s %8s %8s %8s %8s %8s %8s %8s %8s %8s %8s\n", "", "total", "targets",
+              "restr+pr", "coarse", "assembly", "factor", "solve", "line srch", "sweeps",
+              "vertices", "other");
+  print_breakdown_row("first frame", drag.first_frame, method);
+  if (later > 0) print_breakdown_row("per frame, 2..N", drag.later_frames.per(later), method);
+  print_breakdown_row("converge (total)", drag.converge_profile, method);
+  std::printf("  (one energy evaluation: %.2f ms; 'other' also holds building the solver on "
+              "first use)\n\n",
+              1e3 * drag.energy_evaluation_seconds);
+  std::fflush(stdout);
+
+  // 2: the final pose from rest.
+  const FullSolveRun full = run_full_solve(c, method);
+  std::printf("Full solve from rest (final targets; relative change %.0e)\n",
+              kDragConvergeTolerance);
+  std::printf("  %8s %9s %9s %9s %6s %12s %8s %14s  %s\n", "setup s", "hier. s", "solve s",
+              "to 1% s", "iters", "iters to 1%", "", "energy", "stop");
+  std::printf("  %8.3f %9.3f %9.3f %9.3f %6d %12d %8s %14.6e  %s\n", full.setup_seconds,
+              full.hierarchy_build_seconds, full.report.seconds, full.seconds_to_perceived,
+              full.report.iterations, full.iterations_to_perceived, "", full.report.energy,
+              full.report.stop_reason.c_str());
+  print_breakdown_row("full solve (total)", full.profile, method);
+  std::printf("\n");
+
+  const double peak = peak_memory_mb();
+  std::printf("Peak memory (ru_maxrss)  %.1f MB: after mesh %.1f, after drag + converge %.1f, "
+              "after full solves %.1f\n\n",
+              peak, memory_after_mesh, drag.memory_after_drag_mb, full.memory_after_mb);
+
+  const std::vector<double> load_after = load_average();
+  const std::string cpu = cpu_model();
+  const unsigned threads = std::thread::hardware_concurrency();
+  const std::vector<std::string> blas = mapped_blas_libraries();
+  std::printf("Machine    %s, %u hardware threads, OPENBLAS_NUM_THREADS=%s\n", cpu.c_str(),
+              threads, blas_threads ? blas_threads : "(unset)");
+  std::printf("           load average before %.2f, after %.2f\n", load_before[0],
+              load_after[0]);
+  for (const std::string& b : blas) std::printf("           BLAS %s\n", b.c_str());
+  std::fflush(stdout);
+
+  out["mesh"] = mesh_path;
+  out["faces"] = drag.faces;
+  out["vertices"] = drag.vertices;
+  out["handles_from"] = c.handles_from;
+  out["handles"] = nlohmann::json::array();
+  for (const Handle& h : c.handles)
+    out["handles"].push_back({{"name", h.name}, {"faces", h.faces.size()}});
+  out["forces"] = c.forces.size();
+  out["load_seconds"] = c.load_seconds;
+  out["subdivide_seconds"] = c.subdivide_seconds;
+  out["setup_seconds"] = drag.setup_seconds;
+  out["hierarchy_bodies"] = drag.level_bodies;
+  out["frame_seconds"] = drag.frame_seconds;
+  out["frame_energies"] = drag.frame_energies;
+  out["median_ms"] = median_ms;
+  out["max_ms"] = max_ms;
+  out["first_frame_ms"] = 1e3 * drag.frame_seconds.front();
+  out["max_ms_after_first"] = max_later_ms;
+  out["final_energy"] = final_energy;
+  out["converged_energy"] = converged_energy;
+  out["final_gap"] = gap;
+  out["converge_seconds"] = drag.converge.seconds;
+  out["converge_iterations"] = drag.converge.iterations;
+  out["converge_stop_reason"] = drag.converge.stop_reason;
+  out["converge_tolerance"] = kDragConvergeTolerance;
+  out["converge_max_iterations"] = kDragConvergeMaxIterations;
+  out["full_solve"] = {{"setup_seconds", full.setup_seconds},
+                       {"hierarchy_build_seconds", full.hierarchy_build_seconds},
+                       {"seconds", full.report.seconds},
+                       {"iterations", full.report.iterations},
+                       {"initial_energy", full.report.initial_energy},
+                       {"energy", full.report.energy},
+                       {"stop_reason", full.report.stop_reason},
+                       {"energies", full.report.energies},
+                       {"within", kPerceivedGap},
+                       {"iterations_to_within", full.iterations_to_perceived},
+                       {"seconds_to_within", full.seconds_to_perceived}};
+  nlohmann::json profile;
+  profile["first_frame_ms"] = drag.first_frame.to_json_ms();
+  profile["per_frame_ms"] = drag.later_frames.per(later).to_json_ms();
+  profile["per_frame_frames"] = later;
+  profile["converge_ms"] = drag.converge_profile.to_json_ms();
+  profile["full_solve_ms"] = full.profile.to_json_ms();
+  profile["energy_evaluation_ms"] = 1e3 * drag.energy_evaluation_seconds;
+  out["profile"] = profile;
+  out["peak_memory_mb"] = peak;
+  out["memory_mb"] = {{"after_mesh", memory_after_mesh},
+                      {"after_drag_and_converge", drag.memory_after_drag_mb},
+                      {"after_full_solves", full.memory_after_mb}};
+  out["machine"] = {{"cpu_model", cpu},
+                    {"hardware_threads", threads},
+                    {"blas_libraries", blas},
+                    {"openblas_num_threads", blas_threads ? blas_threads : ""},
+                    {"load_average_before", load_before},
+                    {"load_average_after", load_after}};
+  if (!args.json.empty()) write_text_atomically(args.json, out.dump(2) + "\n");
+  return 0;
+}
+
 }  // namespace
 
 Command register_bench(CLI::App& app) {
@@ -566,8 +1197,30 @@ Command register_bench(CLI::App& app) {
   engine->add_flag("--quick", engine_args->quick,
                    "Small cases only (600-face cylinder, no real mesh unless --mesh): seconds");
 
-  return {bench, [engine, engine_args]() -> int {
+  auto drag_args = std::make_shared<BenchDragArguments>();
+  CLI::App* drag = bench->add_subcommand(
+      "drag", "Interactive drag: one solver iteration per frame, then on to convergence");
+  drag->add_option("scenario", drag_args->scenario, "Scenario file (primo-scenario/1 JSON)")
+      ->required();
+  drag->add_option("--frames", drag_args->frames, "Frames from rest to the targets (default 60)")
+      ->check(CLI::Range(1, 100000));
+  drag->add_option("--solver", drag_args->solver,
+                   "hierarchical (default), global or local; one iteration per frame")
+      ->check(CLI::IsMember({"hierarchical", "global", "local"}));
+  drag->add_option("--json", drag_args->json, "Also write the figures as JSON");
+  drag->add_option("--mesh", drag_args->mesh,
+                   "Use this mesh instead of the scenario's (a bare file name is also looked up "
+                   "in shared/meshes above the working directory)");
+  drag->add_option("--subdivide", drag_args->subdivide,
+                   "Loop-subdivide the (triangle) mesh this many times first")
+      ->check(CLI::Range(0, 4));
+  drag->add_flag("--bbox-handles", drag_args->bbox_handles,
+                 "Ignore the scenario's regions, handles and forces: bottom tenth (y) fixed, top "
+                 "tenth turned 30 deg about x and moved a tenth of the diagonal along +z");
+
+  return {bench, [engine, engine_args, drag, drag_args]() -> int {
             if (engine->parsed()) return run_bench_engine(*engine_args);
+            if (drag->parsed()) return run_bench_drag(*drag_args);
             return 1;  // require_subcommand(1) makes this unreachable
           }};
 }
