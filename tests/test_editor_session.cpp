@@ -260,3 +260,65 @@ TEST(EditorSession, DroppedFilesOpenInTheBackground) {
   EXPECT_EQ(s.editor.document()->mesh_path, path);
   EXPECT_FALSE(s.editor.take_error_popup().empty());
 }
+
+TEST(EditorSession, GizmoMovesAndRotatesTheActiveHandleExactly) {
+  Session s;
+  s.two_handles();
+  Document& d = *s.editor.document();
+  s.key(GLFW_KEY_W);
+  GizmoKind kind;
+  glm::dvec3 center;
+  ASSERT_TRUE(s.editor.gizmo_visible(kind, center));
+  EXPECT_EQ(kind, GizmoKind::Translate);
+  const Camera& cam = s.editor.camera();
+  // Grab the X arrow near its tip and pull along it, holding Ctrl to snap.
+  const glm::dvec3 tip = cam.project(center + 0.8 * gizmo_world_size(cam, center) * glm::dvec3(1, 0, 0));
+  const glm::dvec3 further = cam.project(center + 1.6 * gizmo_world_size(cam, center) * glm::dvec3(1, 0, 0));
+  s.event(InputEvent::cursor(tip.x, tip.y));
+  s.event(InputEvent::key_event(GLFW_KEY_LEFT_CONTROL, GLFW_PRESS, 0));
+  s.event(InputEvent::mouse(GLFW_MOUSE_BUTTON_LEFT, GLFW_PRESS, GLFW_MOD_CONTROL));
+  s.event(InputEvent::cursor(further.x, further.y));
+  s.event(InputEvent::mouse(GLFW_MOUSE_BUTTON_LEFT, GLFW_RELEASE, GLFW_MOD_CONTROL));
+  s.event(InputEvent::key_event(GLFW_KEY_LEFT_CONTROL, GLFW_RELEASE, GLFW_MOD_CONTROL));
+  const Vec3 t = d.state.handles[1].pose.translate;
+  const double step = snap_step_for(d.topology->bbox_diagonal);
+  EXPECT_GT(t.x(), 0.0);
+  EXPECT_NEAR(t.x() / step, std::round(t.x() / step), 1e-9) << "snapped";
+  EXPECT_EQ(t.y(), 0.0);
+  EXPECT_EQ(t.z(), 0.0);
+  EXPECT_EQ(d.history.undo_label(), "Move 'Handle 2'");
+
+  // Rotate: sweep a quarter turn around the view ring, snapped to 15 degrees.
+  s.key(GLFW_KEY_E);
+  ASSERT_TRUE(s.editor.gizmo_visible(kind, center));
+  EXPECT_EQ(kind, GizmoKind::Rotate);
+  const std::vector<glm::dvec2> ring = gizmo_ring(cam, center, GizmoPart::View);
+  const glm::dvec3 c = cam.project(center);
+  const glm::dvec2 start = ring[ring.size() / 8];  // 45 degrees: away from the axis rings' lines
+  const glm::dvec2 r = start - glm::dvec2(c.x, c.y);
+  const glm::dvec2 end = glm::dvec2(c.x, c.y) + glm::dvec2(-r.y, r.x);  // a quarter turn on screen
+  ASSERT_EQ(gizmo_hit(GizmoKind::Rotate, cam, center, start), GizmoPart::View);
+  s.event(InputEvent::cursor(start.x, start.y));
+  s.event(InputEvent::key_event(GLFW_KEY_LEFT_CONTROL, GLFW_PRESS, 0));
+  s.event(InputEvent::mouse(GLFW_MOUSE_BUTTON_LEFT, GLFW_PRESS, GLFW_MOD_CONTROL));
+  s.event(InputEvent::cursor(end.x, end.y));
+  s.event(InputEvent::mouse(GLFW_MOUSE_BUTTON_LEFT, GLFW_RELEASE, GLFW_MOD_CONTROL));
+  s.event(InputEvent::key_event(GLFW_KEY_LEFT_CONTROL, GLFW_RELEASE, GLFW_MOD_CONTROL));
+  const Eigen::AngleAxisd aa(d.state.handles[1].pose.rotation);
+  EXPECT_NEAR(aa.angle() * 180.0 / M_PI, 90.0, 1e-9);
+  const glm::dvec3 f = cam.forward();
+  EXPECT_NEAR(std::abs(aa.axis().dot(Vec3(f.x, f.y, f.z))), 1.0, 1e-9) << "about the view direction";
+  EXPECT_EQ(d.state.handles[1].pose.translate, t) << "rotation about the pivot keeps it in place";
+  EXPECT_EQ(d.history.undo_label(), "Rotate 'Handle 2'");
+  ASSERT_TRUE(s.settle());
+}
+
+TEST(EditorSession, OrientationHandlesTurnWhenDragged) {
+  Session s;
+  s.two_handles();
+  s.editor.set_handle_mode(1, HandleMode::Orientation);
+  s.drag("Handle 2", 60, 0);
+  const Pose& p = s.editor.document()->state.handles[1].pose;
+  EXPECT_EQ(p.translate, Vec3::Zero());
+  EXPECT_NEAR(Eigen::AngleAxisd(p.rotation).angle() * 180.0 / M_PI, 30.0, 1e-6) << "half a degree per pixel";
+}
