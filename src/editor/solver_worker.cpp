@@ -205,6 +205,7 @@ void SolverWorker::build(const SolverProblem& problem) {
     return;
   }
   problem_ = std::make_shared<SolverProblem>(problem);
+  first_solve_ = true;
   {
     std::lock_guard<std::mutex> lock(mutex_);
     status_.build_seconds = std::chrono::duration<double>(Clock::now() - start).count();
@@ -243,9 +244,23 @@ void SolverWorker::step() {
       std::chrono::duration<double>(Clock::now() - last_request_).count() < kDragPauseSeconds;
   const int batch = dragging ? chunk_ : std::max(chunk_, kSettleBatch);
   options.max_iterations = std::max(0, std::min(batch, problem_->spec.max_iterations - done));
+  if (first_solve_) {  // say what the wait is for: it can take seconds on big meshes
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      status_.detail = options.method == SolveMethod::Hierarchical ? "building the hierarchy"
+                                                                   : "analysing the system";
+      status_.phase_start = Clock::now();
+    }
+    if (notify_) notify_();
+  }
   SolveReport report;
   try {
     report = deformer_->solve(options);
+    if (first_solve_) {
+      first_solve_ = false;
+      std::lock_guard<std::mutex> lock(mutex_);
+      status_.detail.clear();
+    }
   } catch (const std::exception& e) {
     set_phase(SolverPhase::Failed, e.what());
     return;

@@ -74,6 +74,7 @@ struct SolverStatus {
   double seconds_per_iteration = 0.0;
   double build_seconds = 0.0;
   double progress = 0.0;     // rough convergence estimate in [0, 1]
+  std::string detail;        // what a long first iteration does ("building the hierarchy")
   std::chrono::steady_clock::time_point phase_start;
   std::shared_ptr<const SolverGeometry> geometry;
 
@@ -126,6 +127,7 @@ class SolverWorker {
   std::shared_ptr<const SolverProblem> problem_;
   std::unique_ptr<Deformer> deformer_;
   int chunk_ = 1;
+  bool first_solve_ = true;  // the first solve of a Deformer also sets up its solver
   std::chrono::steady_clock::time_point last_request_;
   bool confirming_ = false;
   double first_decrease_ = 0.0;

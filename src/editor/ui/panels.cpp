@@ -385,7 +385,11 @@ void solver_section(Editor& e) {
                                                         : ImVec4(0.9f, 0.9f, 0.9f, 1);
   ImGui::TextColored(col, "%s", phase_label(st.phase));
   if (st.phase == SolverPhase::Failed) ImGui::TextWrapped("%s", st.error.c_str());
-  ImGui::ProgressBar(float(st.progress), ImVec2(-1, 0), st.busy() ? "converging" : "");
+  ImGui::ProgressBar(float(st.progress), ImVec2(-1, 0),
+                     st.phase == SolverPhase::Building ? "building prisms"
+                     : !st.detail.empty()               ? st.detail.c_str()
+                     : st.busy()                        ? "converging"
+                                                        : "");
   ImGui::Text("Energy %.6g", st.energy);
   ImGui::Text("Iterations %d (total %ld)", st.iterations, st.total_iterations);
   ImGui::Text("%.1f ms per iteration, build %.0f ms", 1000.0 * st.seconds_per_iteration, 1000.0 * st.build_seconds);
@@ -526,6 +530,10 @@ void draw_progress(Editor& e, const ViewportRect& vp) {
   } else if (st.phase == SolverPhase::Building && seconds > 0.2) {
     char t[128];
     std::snprintf(t, sizeof t, "Building prisms... %.1f s", seconds);
+    text = t;
+  } else if (st.phase == SolverPhase::Solving && !st.detail.empty() && seconds > 0.2) {
+    char t[160];
+    std::snprintf(t, sizeof t, "Preparing the solver: %s... %.1f s", st.detail.c_str(), seconds);
     text = t;
   } else if (st.phase == SolverPhase::Solving && seconds > 0.4) {
     char t[160];
