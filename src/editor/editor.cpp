@@ -212,7 +212,6 @@ void Editor::sync_solver() {
 }
 
 void Editor::live_edit() {
-  overlay_changed_ = true;
   // Paint strokes rebuild the solver's prisms: at most every kPaintSyncSeconds (and at the
   // end of the stroke), not at every dab.
   if (gesture_ == Gesture::Paint) return;
@@ -532,6 +531,7 @@ void Editor::brush_dab() {
   for (int f : faces) changes = changes || factor_at(layer, f) != value;
   if (!changes) return;
   layer = paint_factors(layer, doc_->n_faces(), faces, value);
+  overlay_changed_ = true;
   live_edit();
 }
 
@@ -579,7 +579,7 @@ void Editor::update_hover() {
     hovered_handle_ = -1;
     return;
   }
-  if (clock_ - last_hover_pick_ < kHoverSeconds) return;
+  if (clock_ - last_hover_pick_ < kHoverSeconds || (picker_ && !picker_->cheap_to_read())) return;
   last_hover_pick_ = clock_;
   const int face = part == GizmoPart::None ? face_at_cursor() : -1;
   int g = -1;

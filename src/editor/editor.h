@@ -55,6 +55,8 @@ class Picker {
  public:
   virtual ~Picker() = default;
   virtual PickImage read(int x0, int y0, int width, int height) = 0;
+  // False when a read would first have to render a big mesh again: hover feedback skips it.
+  virtual bool cheap_to_read() const { return true; }
 };
 
 class Editor {
@@ -115,7 +117,8 @@ class Editor {
   void frame_selection();  // the selection, else the active handle, else everything
   void set_tool(Tool tool);
   // Panels edit document()->state directly, call live_edit() while a widget is active and
-  // commit() when it is released (one undo step per widget interaction).
+  // commit() when it is released (one undo step per widget interaction). live_edit() sends
+  // the change to the solver; commit() also redraws the overlay colours.
   void live_edit();
   void commit(const std::string& label);
   void request_quit() { quit_requested_ = true; }

@@ -4,6 +4,12 @@
 #include <cmath>
 #include <exception>
 
+#ifdef __linux__
+#include <sys/resource.h>
+#include <sys/syscall.h>
+#include <unistd.h>
+#endif
+
 #include "energy_map.h"
 
 namespace primo::editor {
@@ -134,6 +140,11 @@ void SolverWorker::set_phase(SolverPhase phase, std::string error) {
 }
 
 void SolverWorker::run() {
+#ifdef __linux__
+  // Below the window's thread: a frame waits for the CPU less while the solver iterates (the
+  // engine's own threads inherit this).
+  setpriority(PRIO_PROCESS, pid_t(syscall(SYS_gettid)), 5);
+#endif
   for (;;) {
     std::shared_ptr<const SolverProblem> problem;
     std::unique_ptr<SolverTargets> targets;

@@ -28,6 +28,7 @@ namespace primo::editor {
 namespace {
 
 std::string g_glfw_error;
+constexpr double kFrameSeconds = 1.0 / 60.0;
 
 void glfw_error(int code, const char* description) {
   char text[64];
@@ -399,7 +400,13 @@ int App::run() {
       glfwPollEvents();
     else
       glfwWaitEventsTimeout(0.25);
-    const double now = glfwGetTime();
+    double now = glfwGetTime();
+    // At most about 60 frames a second while animating (what vsync does on a real display;
+    // Xvfb has none): the rest of the CPU goes to the solver.
+    if (animate && now - last < kFrameSeconds) {
+      std::this_thread::sleep_for(std::chrono::duration<double>(kFrameSeconds - (now - last)));
+      now = glfwGetTime();
+    }
     const double dt = now - last;
     last = now;
 

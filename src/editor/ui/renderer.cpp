@@ -318,6 +318,16 @@ void MeshRenderer::render_pick() {
   picked_matrix_ = camera_->projection() * camera_->view();
 }
 
+bool MeshRenderer::pick_current() const {
+  return picked_version_ == geometry_version_ && camera_->width() == pick_width_ &&
+         camera_->height() == pick_height_ &&
+         picked_matrix_ == camera_->projection() * camera_->view();
+}
+
+bool MeshRenderer::cheap_to_read() const {
+  return proxy_count_ == 0 || (camera_ && pick_current());
+}
+
 PickImage MeshRenderer::read(int x0, int y0, int width, int height) {
   PickImage image;
   image.x0 = x0, image.y0 = y0;
@@ -330,9 +340,7 @@ PickImage MeshRenderer::read(int x0, int y0, int width, int height) {
   if (x1 <= x0 || y1 <= y0) return image;
   image.width = x1 - x0;
   image.height = y1 - y0;
-  if (picked_version_ != geometry_version_ || w != pick_width_ || h != pick_height_ ||
-      picked_matrix_ != camera_->projection() * camera_->view())
-    render_pick();
+  if (!pick_current()) render_pick();
 
   const size_t n = size_t(image.width) * image.height;
   std::vector<int> ids(n);

@@ -49,9 +49,12 @@ class MeshRenderer : public Picker {
   void set_interactive(bool interactive) { interactive_ = interactive; }
 
   PickImage read(int x0, int y0, int width, int height) override;
+  // Small meshes always; big ones (with a proxy) while the pick pass is current.
+  bool cheap_to_read() const override;
 
  private:
   void render_pick();
+  bool pick_current() const;
   void render_scene(const DisplaySettings& display, int width, int height, bool proxy);
   void ensure_scene_target(int width, int height);
 
