@@ -19,6 +19,7 @@ Command register_deform(CLI::App& app);
 Command register_bench(CLI::App& app);
 Command register_generate(CLI::App& app);
 Command register_edit(CLI::App& app);
+Command register_replay(CLI::App& app);
 // `primo` without a subcommand: the editor on the bundled example mesh.
 int run_default_editor();
 

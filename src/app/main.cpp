@@ -13,7 +13,8 @@ int main(int argc, char** argv) {
   app.require_subcommand(0, 1);
   const std::vector<primo::app::Command> commands = {
       primo::app::register_edit(app), primo::app::register_deform(app),
-      primo::app::register_generate(app), primo::app::register_bench(app)};
+      primo::app::register_generate(app), primo::app::register_bench(app),
+      primo::app::register_replay(app)};
 
   try {
     app.parse(argc, argv);

@@ -1,0 +1,120 @@
+// `primo replay SESSION.json -o OUT.ext [--frames DIR --every N] [--stats STATS.json]`: replays
+// a recorded editor session headless (docs/sessions.md) and writes the final mesh, and with
+// --frames one OBJ per N frames (DIR/frame_000000.obj, ...). The whole session is validated
+// against the mesh before anything is solved; frames go to a temporary folder inside DIR and
+// are moved into place only when the replay succeeded, so a failure writes nothing.
+
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <nlohmann/json.hpp>
+
+#include "commands.h"
+#include "output_files.h"
+#include "primo/error.h"
+#include "primo/mesh_io.h"
+#include "session.h"
+#include "session_replay.h"
+
+namespace primo::app {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct ReplayArguments {
+  std::string session;
+  std::string output;
+  std::string frames;
+  std::string stats;
+  int every = 1;
+  int iterations_per_frame = 1;
+};
+
+std::string frame_name(int frame) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "frame_%06d.obj", frame);
+  return buf;
+}
+
+int run_replay(const ReplayArguments& args) {
+  const auto start = std::chrono::steady_clock::now();
+  check_mesh_output_path(args.output);
+  if (!args.frames.empty() && !fs::is_directory(fs::absolute(fs::path(args.frames)).parent_path()))
+    throw Error(args.frames + ": the folder " + fs::absolute(fs::path(args.frames)).parent_path().string() +
+                " does not exist");
+  const editor::Session session = editor::load_session(args.session);
+  const Mesh mesh = load_mesh(session.mesh_path);
+  editor::validate_session(session, int(mesh.n_faces()));  // before anything is written
+
+  fs::path temp;
+  std::vector<std::string> written;
+  editor::ReplayOptions options;
+  options.iterations_per_frame = args.iterations_per_frame;
+  if (!args.frames.empty()) {
+    temp = fs::path(args.frames) / (".primo-replay-" + std::to_string(::getpid()));
+    options.every = args.every;
+    options.on_frame = [&](int frame, const Deformer& d) {
+      if (written.empty()) fs::create_directories(temp);
+      const std::string name = frame_name(frame);
+      save_mesh(d.deformed_mesh(mesh), (temp / name).string());
+      written.push_back(name);
+    };
+  }
+  editor::ReplayResult result;
+  try {
+    result = editor::replay_session(session, mesh, options);
+    Mesh final_mesh = mesh;
+    for (auto v : final_mesh.vertices()) final_mesh.set_point(v, result.positions[size_t(v.idx())]);
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::string stats_text;
+    if (!args.stats.empty())
+      stats_text = nlohmann::json{{"frames", result.frames},
+                                  {"events", session.events.size()},
+                                  {"rebuilds", result.rebuilds},
+                                  {"iterations", result.iterations},
+                                  {"converged", result.converged},
+                                  {"energy", result.energy},
+                                  {"frames_written", written.size()},
+                                  {"seconds", seconds}}
+                       .dump(2) + "\n";
+    save_mesh(final_mesh, args.output);
+    if (!args.stats.empty()) write_text_atomically(args.stats, stats_text);
+    for (const std::string& name : written) fs::rename(temp / name, fs::path(args.frames) / name);
+  } catch (...) {
+    std::error_code ignored;
+    if (!temp.empty()) fs::remove_all(temp, ignored);
+    throw;
+  }
+  std::error_code ignored;
+  if (!temp.empty()) fs::remove_all(temp, ignored);
+  if (!result.converged)
+    std::fprintf(stderr, "primo replay: warning: %s: the final pose did not converge within "
+                 "solver.max_iterations\n", args.session.c_str());
+  return 0;
+}
+
+}  // namespace
+
+Command register_replay(CLI::App& app) {
+  auto args = std::make_shared<ReplayArguments>();
+  CLI::App* cmd = app.add_subcommand(
+      "replay", "Replay a recorded editor session (primo-session/1) and write the final mesh");
+  cmd->add_option("session", args->session, "Session file (.session.json)")->required();
+  cmd->add_option("-o,--output", args->output, "Final mesh (.obj .off .ply .stl .om)")->required();
+  cmd->add_option("--frames", args->frames,
+                  "Also write one OBJ per --every frames into this folder (created if missing)");
+  cmd->add_option("--every", args->every, "Frame step for --frames (default 1)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--iterations-per-frame", args->iterations_per_frame,
+                  "Solver iterations after each frame (default 1, as the editor while dragging)")
+      ->check(CLI::Range(1, 1000));
+  cmd->add_option("--stats", args->stats, "Write replay statistics as JSON");
+  return {cmd, [args] { return run_replay(*args); }};
+}
+
+}  // namespace primo::app

@@ -1,0 +1,651 @@
+#include "session.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <initializer_list>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "output_files.h"
+#include "primo/error.h"
+
+namespace primo::editor {
+namespace {
+
+using json = nlohmann::json;
+namespace fs = std::filesystem;
+
+[[noreturn]] void fail(const std::string& where, const std::string& what) {
+  throw Error(where.empty() ? what : where + ": " + what);
+}
+
+std::string at(const std::string& path, const std::string& key) {
+  return path.empty() ? key : path + "." + key;
+}
+
+void check_object(const json& j, const std::string& path, std::initializer_list<const char*> keys) {
+  if (!j.is_object()) fail(path, "expected an object");
+  for (auto it = j.begin(); it != j.end(); ++it) {
+    bool known = false;
+    for (const char* k : keys) known = known || it.key() == k;
+    if (!known) fail(at(path, it.key()), "unknown key");
+  }
+}
+
+const json& member(const json& j, const std::string& path, const char* key) {
+  auto it = j.find(key);
+  if (it == j.end()) fail(at(path, key), "missing");
+  return *it;
+}
+
+double number(const json& j, const std::string& path) {
+  if (!j.is_number()) fail(path, "expected a number");
+  const double v = j.get<double>();
+  if (!std::isfinite(v)) fail(path, "expected a finite number");
+  return v;
+}
+
+int integer(const json& j, const std::string& path) {
+  if (!j.is_number_integer()) fail(path, "expected an integer");
+  const auto v = j.get<long long>();
+  if (v < -2147483647LL || v > 2147483647LL) fail(path, "integer out of range");
+  return int(v);
+}
+
+Vec3 vec3(const json& j, const std::string& path) {
+  if (!j.is_array() || j.size() != 3) fail(path, "expected an array of 3 numbers");
+  return {number(j[0], path + "[0]"), number(j[1], path + "[1]"), number(j[2], path + "[2]")};
+}
+
+Eigen::Quaterniond quaternion(const json& j, const std::string& path) {
+  if (!j.is_array() || j.size() != 4) fail(path, "expected [w, x, y, z]");
+  Eigen::Quaterniond q(number(j[0], path + "[0]"), number(j[1], path + "[1]"),
+                       number(j[2], path + "[2]"), number(j[3], path + "[3]"));
+  if (std::abs(q.norm() - 1.0) > 1e-6) fail(path, "not a unit quaternion");
+  return q;
+}
+
+std::vector<int> int_array(const json& j, const std::string& path) {
+  if (!j.is_array()) fail(path, "expected an array of integers");
+  std::vector<int> out;
+  out.reserve(j.size());
+  for (size_t i = 0; i < j.size(); ++i) out.push_back(integer(j[i], path + "[" + std::to_string(i) + "]"));
+  return out;
+}
+
+std::vector<double> number_array(const json& j, const std::string& path) {
+  if (!j.is_array()) fail(path, "expected an array of numbers");
+  std::vector<double> out;
+  out.reserve(j.size());
+  for (size_t i = 0; i < j.size(); ++i) out.push_back(number(j[i], path + "[" + std::to_string(i) + "]"));
+  return out;
+}
+
+const char* mode_name(HandleMode m) {
+  switch (m) {
+    case HandleMode::Pose: return "pose";
+    case HandleMode::Position: return "position";
+    case HandleMode::Orientation: return "orientation";
+    case HandleMode::Spring: return "spring";
+    case HandleMode::Fixed: return "fixed";
+  }
+  return "pose";
+}
+
+HandleMode parse_mode(const json& j, const std::string& path) {
+  if (j.is_string()) {
+    const std::string s = j.get<std::string>();
+    for (HandleMode m : {HandleMode::Pose, HandleMode::Position, HandleMode::Orientation,
+                         HandleMode::Spring, HandleMode::Fixed})
+      if (s == mode_name(m)) return m;
+  }
+  fail(path, "expected \"pose\", \"position\", \"orientation\", \"spring\" or \"fixed\"");
+}
+
+json vec_json(const Vec3& v) { return json::array({v.x(), v.y(), v.z()}); }
+json quat_json(const Eigen::Quaterniond& q) { return json::array({q.w(), q.x(), q.y(), q.z()}); }
+
+json pose_json(const Pose& p) {
+  return {{"translate", vec_json(p.translate)}, {"rotation", quat_json(p.rotation)}};
+}
+
+json group_json(const HandleGroup& g) {
+  json j = {{"name", g.name},     {"mode", mode_name(g.mode)}, {"faces", *g.faces},
+            {"stiffness", g.stiffness}, {"center", vec_json(g.center)}, {"color", g.color}};
+  j["translate"] = vec_json(g.pose.translate);
+  j["rotation"] = quat_json(g.pose.rotation);
+  return j;
+}
+
+HandleGroup parse_group(const json& j, const std::string& path) {
+  check_object(j, path, {"name", "mode", "faces", "stiffness", "center", "color", "translate", "rotation"});
+  HandleGroup g;
+  const json& name = member(j, path, "name");
+  if (!name.is_string()) fail(at(path, "name"), "expected a string");
+  g.name = name.get<std::string>();
+  g.mode = parse_mode(member(j, path, "mode"), at(path, "mode"));
+  g.faces = std::make_shared<const std::vector<int>>(int_array(member(j, path, "faces"), at(path, "faces")));
+  if (j.contains("stiffness")) {
+    g.stiffness = number(j["stiffness"], at(path, "stiffness"));
+    if (g.stiffness <= 0.0) fail(at(path, "stiffness"), "must be positive");
+  }
+  g.center = vec3(member(j, path, "center"), at(path, "center"));
+  if (j.contains("color")) g.color = integer(j["color"], at(path, "color"));
+  if (j.contains("translate")) g.pose.translate = vec3(j["translate"], at(path, "translate"));
+  if (j.contains("rotation")) g.pose.rotation = quaternion(j["rotation"], at(path, "rotation"));
+  return g;
+}
+
+std::vector<HandleGroup> parse_groups(const json& j, const std::string& path) {
+  if (!j.is_array()) fail(path, "expected an array of handles");
+  std::vector<HandleGroup> out;
+  for (size_t i = 0; i < j.size(); ++i) out.push_back(parse_group(j[i], path + "[" + std::to_string(i) + "]"));
+  return out;
+}
+
+json prisms_json(const PrismSettings& p) {
+  return {{"height", p.height}, {"width", p.width}, {"normal_blend", p.normal_blend}};
+}
+
+PrismSettings parse_prisms(const json& j, const std::string& path) {
+  check_object(j, path, {"height", "width", "normal_blend"});
+  PrismSettings p;
+  p.height = number(member(j, path, "height"), at(path, "height"));
+  p.width = number(member(j, path, "width"), at(path, "width"));
+  p.normal_blend = number(member(j, path, "normal_blend"), at(path, "normal_blend"));
+  if (p.height <= 0.0) fail(at(path, "height"), "must be positive");
+  if (p.width <= 0.0) fail(at(path, "width"), "must be positive");
+  if (p.normal_blend < 0.0 || p.normal_blend > 1.0) fail(at(path, "normal_blend"), "must be in [0, 1]");
+  return p;
+}
+
+// Sparse factors: faces whose value is not 1.
+json sparse_factors(const FactorArray& f) {
+  json faces = json::array(), values = json::array();
+  if (f)
+    for (size_t i = 0; i < f->size(); ++i)
+      if ((*f)[i] != 1.0) faces.push_back(int(i)), values.push_back((*f)[i]);
+  return {{"faces", faces}, {"values", values}};
+}
+
+void parse_face_values(const json& j, const std::string& path, std::vector<int>& faces,
+                       std::vector<double>& values) {
+  faces = int_array(member(j, path, "faces"), at(path, "faces"));
+  values = number_array(member(j, path, "values"), at(path, "values"));
+  if (faces.size() != values.size()) fail(at(path, "values"), "must have as many entries as faces");
+  for (size_t i = 0; i < values.size(); ++i)
+    if (values[i] <= 0.0) fail(at(path, "values[" + std::to_string(i) + "]"), "must be positive");
+}
+
+// Faces go into arrays of unknown size here; apply_event checks them against the mesh.
+FactorArray sparse_to_array(const std::vector<int>& faces, const std::vector<double>& values) {
+  if (faces.empty()) return nullptr;
+  int n = 0;
+  for (int f : faces) n = std::max(n, f + 1);
+  auto a = std::make_shared<std::vector<double>>(size_t(n), 1.0);
+  for (size_t i = 0; i < faces.size(); ++i)
+    if (faces[i] >= 0) (*a)[size_t(faces[i])] = values[i];
+  return a;
+}
+
+const char* layer_name(PaintLayer l) { return l == PaintLayer::Height ? "height" : "width"; }
+
+json event_json(const SessionEvent& e) {
+  json j = {{"t", e.t}, {"frame", e.frame}, {"type", event_type_name(e.type)}};
+  switch (e.type) {
+    case SessionEvent::Type::Handles: {
+      json hs = json::array();
+      for (const HandleGroup& g : e.handles) hs.push_back(group_json(g));
+      j["handles"] = hs;
+      break;
+    }
+    case SessionEvent::Type::Targets: {
+      json ps = json::array();
+      for (const SessionPose& p : e.poses) {
+        json pj = pose_json(p.pose);
+        pj["handle"] = p.handle;
+        ps.push_back(pj);
+      }
+      j["poses"] = ps;
+      break;
+    }
+    case SessionEvent::Type::Factors:
+      j["layer"] = layer_name(e.layer);
+      j["faces"] = e.faces;
+      j["values"] = e.values;
+      break;
+    case SessionEvent::Type::Prisms: j["prisms"] = prisms_json(e.prisms); break;
+    case SessionEvent::Type::Undo:
+    case SessionEvent::Type::Redo: break;
+  }
+  return j;
+}
+
+SessionEvent parse_event(const json& j, SessionEvent::Type type) {
+  SessionEvent e;
+  e.type = type;
+  e.t = number(member(j, "", "t"), "t");
+  if (e.t < 0.0) fail("t", "must not be negative");
+  e.frame = integer(member(j, "", "frame"), "frame");
+  if (e.frame < 0) fail("frame", "must not be negative");
+  switch (type) {
+    case SessionEvent::Type::Handles:
+      check_object(j, "", {"t", "frame", "type", "handles"});
+      e.handles = parse_groups(member(j, "", "handles"), "handles");
+      break;
+    case SessionEvent::Type::Targets: {
+      check_object(j, "", {"t", "frame", "type", "poses"});
+      const json& ps = member(j, "", "poses");
+      if (!ps.is_array()) fail("poses", "expected an array");
+      for (size_t i = 0; i < ps.size(); ++i) {
+        const std::string p = "poses[" + std::to_string(i) + "]";
+        check_object(ps[i], p, {"handle", "translate", "rotation"});
+        SessionPose sp;
+        sp.handle = integer(member(ps[i], p, "handle"), at(p, "handle"));
+        sp.pose.translate = vec3(member(ps[i], p, "translate"), at(p, "translate"));
+        sp.pose.rotation = quaternion(member(ps[i], p, "rotation"), at(p, "rotation"));
+        e.poses.push_back(sp);
+      }
+      break;
+    }
+    case SessionEvent::Type::Factors: {
+      check_object(j, "", {"t", "frame", "type", "layer", "faces", "values"});
+      const json& l = member(j, "", "layer");
+      if (l == "height") e.layer = PaintLayer::Height;
+      else if (l == "width") e.layer = PaintLayer::Width;
+      else fail("layer", "expected \"height\" or \"width\"");
+      parse_face_values(j, "", e.faces, e.values);
+      break;
+    }
+    case SessionEvent::Type::Prisms:
+      check_object(j, "", {"t", "frame", "type", "prisms"});
+      e.prisms = parse_prisms(member(j, "", "prisms"), "prisms");
+      break;
+    case SessionEvent::Type::Undo:
+    case SessionEvent::Type::Redo: check_object(j, "", {"t", "frame", "type"}); break;
+  }
+  return e;
+}
+
+std::string read_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error(path + ": cannot open the session file");
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+void check_faces(const std::vector<int>& faces, int n_faces, const std::string& path, bool sorted) {
+  for (size_t i = 0; i < faces.size(); ++i) {
+    if (faces[i] < 0 || faces[i] >= n_faces)
+      fail(path + "[" + std::to_string(i) + "]",
+           "face " + std::to_string(faces[i]) + " out of range (the mesh has " +
+               std::to_string(n_faces) + " faces)");
+    if (sorted && i > 0 && faces[i] <= faces[i - 1])
+      fail(path + "[" + std::to_string(i) + "]", "faces must be sorted and distinct");
+  }
+}
+
+void check_groups(const std::vector<HandleGroup>& groups, int n_faces, const std::string& path) {
+  std::vector<int> owner(size_t(n_faces), -1);
+  for (size_t g = 0; g < groups.size(); ++g) {
+    const std::string p = path + "[" + std::to_string(g) + "]";
+    if (groups[g].faces->empty()) fail(at(p, "faces"), "a handle needs at least one face");
+    check_faces(*groups[g].faces, n_faces, at(p, "faces"), true);
+    for (int f : *groups[g].faces) {
+      if (owner[size_t(f)] >= 0)
+        fail(at(p, "faces"), "face " + std::to_string(f) + " is also in handle " +
+                                 std::to_string(owner[size_t(f)]));
+      owner[size_t(f)] = int(g);
+    }
+  }
+}
+
+FactorArray set_factors(const FactorArray& old, int n_faces, const std::vector<int>& faces,
+                        const std::vector<double>& values) {
+  auto a = old ? std::make_shared<std::vector<double>>(*old)
+               : std::make_shared<std::vector<double>>(size_t(n_faces), 1.0);
+  a->resize(size_t(n_faces), 1.0);
+  for (size_t i = 0; i < faces.size(); ++i) (*a)[size_t(faces[i])] = values[i];
+  if (std::all_of(a->begin(), a->end(), [](double v) { return v == 1.0; })) return nullptr;
+  return a;
+}
+
+bool same_group(const HandleGroup& a, const HandleGroup& b) {
+  return a.name == b.name && (a.faces == b.faces || *a.faces == *b.faces) && a.mode == b.mode &&
+         a.stiffness == b.stiffness && a.center == b.center && a.color == b.color;
+}
+
+}  // namespace
+
+const char* event_type_name(SessionEvent::Type type) {
+  switch (type) {
+    case SessionEvent::Type::Handles: return "handles";
+    case SessionEvent::Type::Targets: return "targets";
+    case SessionEvent::Type::Factors: return "factors";
+    case SessionEvent::Type::Prisms: return "prisms";
+    case SessionEvent::Type::Undo: return "undo";
+    case SessionEvent::Type::Redo: return "redo";
+  }
+  return "?";
+}
+
+Session parse_session(const std::string& text, const std::string& source) {
+  const std::string src = source.empty() ? "session" : source;
+  // Where the parser is, so that a file cut off mid-timeline names the event it broke in.
+  std::string top_key;
+  int event_index = -1;
+  std::string event_type;
+  bool type_next = false;
+  auto where_event = [&](int i, const std::string& type) {
+    return "events[" + std::to_string(i) + "]" + (type.empty() ? "" : " (" + type + ")");
+  };
+  json root;
+  try {
+    root = json::parse(text, [&](int depth, json::parse_event_t ev, json& parsed) {
+      if (ev == json::parse_event_t::key && depth == 1) top_key = parsed.get<std::string>();
+      if (top_key == "events" && depth == 2 && ev == json::parse_event_t::object_start)
+        ++event_index, event_type.clear();
+      if (top_key == "events" && depth == 3) {
+        if (ev == json::parse_event_t::key) type_next = parsed == "type";
+        else if (ev == json::parse_event_t::value && type_next && parsed.is_string())
+          event_type = parsed.get<std::string>(), type_next = false;
+      }
+      return true;
+    });
+  } catch (const json::parse_error& e) {
+    // Line and column of the byte where parsing failed.
+    size_t line = 1, col = 1;
+    for (size_t i = 0; i + 1 < e.byte && i < text.size(); ++i)
+      if (text[i] == '\n') ++line, col = 1; else ++col;
+    const bool truncated = e.byte >= text.size();
+    std::string where = top_key == "events" && event_index >= 0 ? where_event(event_index, event_type) + ": " : "";
+    throw Error(src + ": " + where + (truncated ? "the file ends early (truncated?)" : "malformed JSON") +
+                " at line " + std::to_string(line) + ", column " + std::to_string(col));
+  }
+
+  Session s;
+  s.source = source;
+  try {
+    check_object(root, "", {"format", "mesh", "solver", "initial", "events"});
+    const json& format = member(root, "", "format");
+    if (format != kSessionFormat)
+      fail("format", std::string("expected \"") + kSessionFormat + "\"");
+    const json& mesh = member(root, "", "mesh");
+    if (!mesh.is_string() || mesh.get<std::string>().empty()) fail("mesh", "expected a file path");
+    s.mesh = mesh.get<std::string>();
+    fs::path mp(s.mesh);
+    s.mesh_path = mp.is_absolute() || source.empty()
+                      ? s.mesh
+                      : (fs::path(source).parent_path() / mp).lexically_normal().string();
+    if (root.contains("solver")) {
+      const json& sj = root["solver"];
+      check_object(sj, "solver", {"max_iterations", "tolerance", "method"});
+      if (sj.contains("max_iterations")) {
+        s.solver.max_iterations = integer(sj["max_iterations"], "solver.max_iterations");
+        if (s.solver.max_iterations < 1) fail("solver.max_iterations", "must be at least 1");
+      }
+      if (sj.contains("tolerance")) {
+        s.solver.tolerance = number(sj["tolerance"], "solver.tolerance");
+        if (s.solver.tolerance < 0.0) fail("solver.tolerance", "must not be negative");
+      }
+      if (sj.contains("method")) {
+        const json& m = sj["method"];
+        if (m == "default") s.solver.method = SolverMethod::Default;
+        else if (m == "global") s.solver.method = SolverMethod::Global;
+        else if (m == "local") s.solver.method = SolverMethod::Local;
+        else if (m == "hierarchical") s.solver.method = SolverMethod::Hierarchical;
+        else fail("solver.method", "expected \"default\", \"global\", \"local\" or \"hierarchical\"");
+      }
+    }
+    const json& init = member(root, "", "initial");
+    check_object(init, "initial", {"prisms", "handles", "height_factors", "width_factors"});
+    s.initial.prisms = parse_prisms(member(init, "initial", "prisms"), "initial.prisms");
+    s.initial.handles = parse_groups(member(init, "initial", "handles"), "initial.handles");
+    for (const char* layer : {"height_factors", "width_factors"}) {
+      if (!init.contains(layer)) continue;
+      const std::string p = std::string("initial.") + layer;
+      check_object(init[layer], p, {"faces", "values"});
+      std::vector<int> faces;
+      std::vector<double> values;
+      parse_face_values(init[layer], p, faces, values);
+      for (size_t i = 0; i < faces.size(); ++i)
+        if (faces[i] < 0) fail(p + ".faces[" + std::to_string(i) + "]", "negative face index");
+      (layer[0] == 'h' ? s.initial.height_factor : s.initial.width_factor) = sparse_to_array(faces, values);
+    }
+    s.initial.next_number = int(s.initial.handles.size()) + 1;
+  } catch (const Error& e) {
+    throw Error(src + ": " + e.what());
+  }
+
+  const json* events = nullptr;
+  try {
+    events = &member(root, "", "events");
+    if (!events->is_array()) fail("events", "expected an array");
+  } catch (const Error& e) {
+    throw Error(src + ": " + e.what());
+  }
+  double last_t = 0.0;
+  int last_frame = 0;
+  for (size_t i = 0; i < events->size(); ++i) {
+    const json& ej = (*events)[i];
+    std::string type;
+    if (ej.is_object() && ej.contains("type") && ej["type"].is_string()) type = ej["type"].get<std::string>();
+    const std::string where = src + ": " + where_event(int(i), type) + ": ";
+    if (!ej.is_object()) throw Error(where + "expected an object");
+    if (type.empty()) throw Error(where + "type: missing or not a string");
+    SessionEvent::Type t{};
+    bool known = false;
+    for (auto candidate : {SessionEvent::Type::Handles, SessionEvent::Type::Targets,
+                           SessionEvent::Type::Factors, SessionEvent::Type::Prisms,
+                           SessionEvent::Type::Undo, SessionEvent::Type::Redo})
+      if (type == event_type_name(candidate)) t = candidate, known = true;
+    if (!known)
+      throw Error(where + "type: unknown event type (expected handles, targets, factors, prisms, "
+                          "undo or redo)");
+    try {
+      SessionEvent e = parse_event(ej, t);
+      if (e.t < last_t) fail("t", "goes back in time");
+      if (e.frame < last_frame) fail("frame", "goes back");
+      last_t = e.t, last_frame = e.frame;
+      s.events.push_back(std::move(e));
+    } catch (const Error& e) {
+      throw Error(where + e.what());
+    }
+  }
+  return s;
+}
+
+Session load_session(const std::string& path) { return parse_session(read_file(path), path); }
+
+std::string session_to_json(const Session& s, const std::string& session_path) {
+  std::string mesh = s.mesh_path.empty() ? s.mesh : s.mesh_path;
+  if (!session_path.empty() && !mesh.empty()) {
+    std::error_code ec;
+    const fs::path folder = fs::absolute(fs::path(session_path), ec).parent_path();
+    const fs::path rel = fs::absolute(fs::path(mesh), ec).lexically_relative(folder);
+    if (!ec && !rel.empty()) mesh = rel.generic_string();
+  }
+  const char* method = "default";
+  switch (s.solver.method) {
+    case SolverMethod::Global: method = "global"; break;
+    case SolverMethod::Local: method = "local"; break;
+    case SolverMethod::Hierarchical: method = "hierarchical"; break;
+    case SolverMethod::Default: break;
+  }
+  json handles = json::array();
+  for (const HandleGroup& g : s.initial.handles) handles.push_back(group_json(g));
+  const json initial = {{"prisms", prisms_json(s.initial.prisms)},
+                        {"handles", handles},
+                        {"height_factors", sparse_factors(s.initial.height_factor)},
+                        {"width_factors", sparse_factors(s.initial.width_factor)}};
+  const json solver = {{"max_iterations", s.solver.max_iterations},
+                       {"tolerance", s.solver.tolerance},
+                       {"method", method}};
+  // One event per line: diffable, and a truncated file still shows where it ends.
+  std::string out = "{\n  \"format\": \"" + std::string(kSessionFormat) + "\",\n";
+  out += "  \"mesh\": " + json(mesh).dump() + ",\n";
+  out += "  \"solver\": " + solver.dump() + ",\n";
+  out += "  \"initial\": " + initial.dump() + ",\n";
+  out += "  \"events\": [";
+  for (size_t i = 0; i < s.events.size(); ++i)
+    out += (i ? ",\n    " : "\n    ") + event_json(s.events[i]).dump();
+  out += s.events.empty() ? "]\n}\n" : "\n  ]\n}\n";
+  return out;
+}
+
+void save_session(const Session& session, const std::string& path) {
+  app::write_text_atomically(path, session_to_json(session, path));
+}
+
+void apply_event(EditState& state, const SessionEvent& e, int n_faces) {
+  switch (e.type) {
+    case SessionEvent::Type::Handles:
+      check_groups(e.handles, n_faces, "handles");
+      state.handles = e.handles;
+      if (state.active >= int(state.handles.size())) state.active = int(state.handles.size()) - 1;
+      break;
+    case SessionEvent::Type::Targets:
+      for (size_t i = 0; i < e.poses.size(); ++i) {
+        const int h = e.poses[i].handle;
+        if (h < 0 || h >= int(state.handles.size()))
+          fail("poses[" + std::to_string(i) + "].handle",
+               "no handle " + std::to_string(h) + " (there are " +
+                   std::to_string(state.handles.size()) + ")");
+        state.handles[size_t(h)].pose = e.poses[i].pose;
+      }
+      break;
+    case SessionEvent::Type::Factors: {
+      check_faces(e.faces, n_faces, "faces", false);
+      FactorArray& f = e.layer == PaintLayer::Height ? state.height_factor : state.width_factor;
+      f = set_factors(f, n_faces, e.faces, e.values);
+      break;
+    }
+    case SessionEvent::Type::Prisms: state.prisms = e.prisms; break;
+    case SessionEvent::Type::Undo:
+    case SessionEvent::Type::Redo: break;
+  }
+}
+
+EditState validate_session(const Session& s, int n_faces) {
+  const std::string src = s.source.empty() ? "session" : s.source;
+  EditState state = s.initial;
+  try {
+    check_groups(state.handles, n_faces, "initial.handles");
+    for (const FactorArray* f : {&state.height_factor, &state.width_factor})
+      if (*f && int((*f)->size()) > n_faces)
+        fail("initial", "a painted face is out of range (the mesh has " + std::to_string(n_faces) + " faces)");
+    if (state.height_factor) state.height_factor = set_factors(state.height_factor, n_faces, {}, {});
+    if (state.width_factor) state.width_factor = set_factors(state.width_factor, n_faces, {}, {});
+  } catch (const Error& e) {
+    throw Error(src + ": " + e.what());
+  }
+  for (size_t i = 0; i < s.events.size(); ++i) {
+    try {
+      apply_event(state, s.events[i], n_faces);
+    } catch (const Error& e) {
+      throw Error(src + ": events[" + std::to_string(i) + "] (" +
+                  event_type_name(s.events[i].type) + "): " + e.what());
+    }
+  }
+  return state;
+}
+
+// --- Recording -------------------------------------------------------------------------
+
+void SessionRecorder::start(const Document& doc, double now) {
+  recording_ = true;
+  session_ = Session{};
+  session_.mesh_path = doc.mesh_path;
+  session_.mesh = doc.mesh_path;
+  session_.solver = doc.solver;
+  session_.initial = doc.state;
+  session_.initial.selection = nullptr;
+  last_ = session_.initial;
+  t0_ = now;
+  frame_ = 0;
+  marker_this_frame_ = false;
+  undo_label_ = doc.history.undo_label();
+  redo_label_ = doc.history.redo_label();
+  history_size_ = doc.history.size();
+}
+
+void SessionRecorder::push(SessionEvent e, double now) {
+  e.t = std::max(0.0, now - t0_);
+  if (!session_.events.empty()) e.t = std::max(e.t, session_.events.back().t);
+  e.frame = frame_;
+  session_.events.push_back(std::move(e));
+}
+
+void SessionRecorder::note_undo(bool redo, double now) {
+  if (!recording_) return;
+  SessionEvent e;
+  e.type = redo ? SessionEvent::Type::Redo : SessionEvent::Type::Undo;
+  push(std::move(e), now);
+  marker_this_frame_ = true;
+}
+
+void SessionRecorder::observe(const Document& doc, double now) {
+  if (!recording_) return;
+  const EditState& s = doc.state;
+  const UndoStack& h = doc.history;
+  if (!marker_this_frame_ && h.size() == history_size_ && s == h.current()) {
+    if (!undo_label_.empty() && h.redo_label() == undo_label_ && h.undo_label() != undo_label_)
+      note_undo(false, now);
+    else if (!redo_label_.empty() && h.undo_label() == redo_label_ && h.redo_label() != redo_label_)
+      note_undo(true, now);
+  }
+  bool structure = s.handles.size() != last_.handles.size();
+  for (size_t i = 0; !structure && i < s.handles.size(); ++i)
+    structure = !same_group(s.handles[i], last_.handles[i]);
+  if (structure) {
+    SessionEvent e;
+    e.type = SessionEvent::Type::Handles;
+    e.handles = s.handles;
+    push(std::move(e), now);
+  } else {
+    SessionEvent e;
+    e.type = SessionEvent::Type::Targets;
+    for (size_t i = 0; i < s.handles.size(); ++i)
+      if (!(s.handles[i].pose == last_.handles[i].pose)) e.poses.push_back({int(i), s.handles[i].pose});
+    if (!e.poses.empty()) push(std::move(e), now);
+  }
+  for (PaintLayer layer : {PaintLayer::Height, PaintLayer::Width}) {
+    const FactorArray& now_f = layer_factors(s, layer);
+    const FactorArray& was_f = layer_factors(last_, layer);
+    if (now_f == was_f) continue;
+    SessionEvent e;
+    e.type = SessionEvent::Type::Factors;
+    e.layer = layer;
+    for (int f = 0; f < doc.n_faces(); ++f) {
+      const double v = factor_at(now_f, f);
+      if (v != factor_at(was_f, f)) e.faces.push_back(f), e.values.push_back(v);
+    }
+    if (!e.faces.empty()) push(std::move(e), now);
+  }
+  if (!(s.prisms == last_.prisms)) {
+    SessionEvent e;
+    e.type = SessionEvent::Type::Prisms;
+    e.prisms = s.prisms;
+    push(std::move(e), now);
+  }
+  last_.handles = s.handles;
+  last_.prisms = s.prisms;
+  last_.height_factor = s.height_factor;
+  last_.width_factor = s.width_factor;
+  undo_label_ = h.undo_label();
+  redo_label_ = h.redo_label();
+  history_size_ = h.size();
+  marker_this_frame_ = false;
+  ++frame_;
+}
+
+Session SessionRecorder::stop(const Document& doc, double now) {
+  if (recording_) observe(doc, now);
+  recording_ = false;
+  return session_;
+}
+
+}  // namespace primo::editor
