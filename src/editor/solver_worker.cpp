@@ -109,11 +109,6 @@ SolverStatus SolverWorker::status() const {
   return status_;
 }
 
-std::uint64_t SolverWorker::last_request() const {
-  std::lock_guard<std::mutex> lock(mutex_);
-  return serial_;
-}
-
 bool SolverWorker::idle_for_latest() const {
   std::lock_guard<std::mutex> lock(mutex_);
   return status_.request_serial == serial_ && !status_.busy() && !pending_problem_ &&
@@ -173,7 +168,7 @@ void SolverWorker::run() {
     if (problem) {
       build(*problem);
       std::lock_guard<std::mutex> lock(mutex_);
-      status_.problem_serial = status_.request_serial = problem_serial;
+      status_.request_serial = problem_serial;
     }
     if (targets && deformer_) {
       apply(*targets);

@@ -66,8 +66,7 @@ struct SolverGeometry {
 struct SolverStatus {
   SolverPhase phase = SolverPhase::Idle;
   std::string error;
-  std::uint64_t problem_serial = 0;  // latest request this status reflects
-  std::uint64_t request_serial = 0;
+  std::uint64_t request_serial = 0;  // latest request this status reflects
   double energy = 0.0;
   int iterations = 0;        // since the last request
   long total_iterations = 0;
@@ -96,7 +95,6 @@ class SolverWorker {
   void set_outputs(bool energy_map, bool prism_corners);
 
   SolverStatus status() const;
-  std::uint64_t last_request() const;
   // True when the latest request has been fully handled (settled, stopped or failed).
   bool idle_for_latest() const;
   // Blocks until idle_for_latest() or the timeout; returns whether it became idle.
