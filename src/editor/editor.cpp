@@ -141,6 +141,7 @@ void Editor::update(double seconds) {
     }
   }
   if (!doc_) return;
+  sessions.update(*this, seconds);
 
   if (gesture_ == Gesture::Paint && clock_ - last_paint_sync_ >= kPaintSyncSeconds) {
     sync_solver();

@@ -18,6 +18,7 @@
 #include "input.h"
 #include "paint.h"
 #include "screen_region.h"
+#include "session_control.h"
 #include "solver_worker.h"
 
 namespace primo::editor {
@@ -133,6 +134,8 @@ class Editor {
   const Camera& camera() const { return camera_; }
   ToolSettings tools;
   DisplaySettings display;
+  // Session recording and playback (docs/sessions.md), driven from update().
+  SessionControl sessions;
   const SolverStatus& solver_status() const { return status_; }
   std::shared_ptr<const SolverGeometry> geometry() const { return geometry_; }
   // Deformed vertex positions shown now (rest positions before the first result).

@@ -107,6 +107,14 @@ ScriptCommand parse_line(const std::string& line) {
     c.kind = word == "open" ? K::Open : word == "save-mesh" ? K::SaveMesh : K::SaveScenario;
     c.text = rest_of(in);
     if (c.text.empty()) throw std::invalid_argument(word + " takes PATH");
+  } else if (word == "save-session" || word == "play-session") {
+    c.kind = word == "save-session" ? K::SaveSession : K::PlaySession;
+    c.text = rest_of(in);
+    if (c.text.empty()) throw std::invalid_argument(word + " takes PATH");
+  } else if (word == "record-start" || word == "record-stop") {
+    all_args();
+    if (!args.empty()) throw std::invalid_argument(word + " takes no argument");
+    c.kind = word == "record-start" ? K::RecordStart : K::RecordStop;
   } else if (word == "screenshot") {
     all_args();
     if (args.empty() || args.size() > 2 || (args.size() == 2 && args[1] != "ui"))
@@ -251,6 +259,7 @@ bool ScriptPlayer::step(double now, ScriptHost& host) {
       emitted_ = true;  // taken at the end of this frame: the next command waits for the next
       return true;
     case K::Open: case K::SaveMesh: case K::SaveScenario: case K::Echo: case K::Quit:
+    case K::RecordStart: case K::RecordStop: case K::SaveSession: case K::PlaySession:
       host.run(c);
       return true;
   }

@@ -18,6 +18,8 @@
 //   report POSITION                 print "report X Y" (window coordinates) on stdout
 //   wait-file PATH [TIMEOUT]        until the file exists (60 s): lets a test drive real input
 //                                   (xdotool) and tell the script when it is done
+//   record-start | record-stop      record the session (docs/sessions.md)
+//   save-session PATH | play-session PATH   save the recording / open one and play it
 //   quit                            exit (status 0 unless a command failed)
 // Input commands emit at most one event per frame, as a person would; the others run at once,
 // except that a screenshot ends the frame (it is taken when the frame is drawn).
@@ -32,7 +34,8 @@ namespace primo::editor {
 struct ScriptCommand {
   enum class Kind {
     Wait, WaitSettled, Move, Press, Release, Click, Scroll, Key, Hold, Unhold, Type,
-    Open, SaveMesh, SaveScenario, Screenshot, Echo, Report, WaitFile, Quit
+    Open, SaveMesh, SaveScenario, Screenshot, Echo, Report, WaitFile, Quit,
+    RecordStart, RecordStop, SaveSession, PlaySession
   };
   Kind kind = Kind::Wait;
   int line = 0;

@@ -464,8 +464,8 @@ std::string session_to_json(const Session& s, const std::string& session_path) {
   std::string mesh = s.mesh_path.empty() ? s.mesh : s.mesh_path;
   if (!session_path.empty() && !mesh.empty()) {
     std::error_code ec;
-    const fs::path folder = fs::absolute(fs::path(session_path), ec).parent_path();
-    const fs::path rel = fs::absolute(fs::path(mesh), ec).lexically_relative(folder);
+    const fs::path folder = fs::absolute(fs::path(session_path), ec).lexically_normal().parent_path();
+    const fs::path rel = fs::absolute(fs::path(mesh), ec).lexically_normal().lexically_relative(folder);
     if (!ec && !rel.empty()) mesh = rel.generic_string();
   }
   const char* method = "default";

@@ -219,6 +219,13 @@ void App::run(const ScriptCommand& c) {
       ui_.screenshot_with_ui = c.with_ui;
       break;
     case K::Echo: std::printf("%s\n", c.text.c_str()); break;
+    case K::RecordStart: editor_.sessions.start_recording(editor_); break;
+    case K::RecordStop: editor_.sessions.stop_recording(editor_); break;
+    case K::SaveSession: editor_.sessions.save(editor_, c.text); break;
+    case K::PlaySession:
+      editor_.sessions.open_playback(editor_, c.text);
+      editor_.sessions.play(editor_);
+      break;
     case K::Quit: quit_ = true; break;
     default: break;
   }

@@ -12,6 +12,7 @@
 #include "face_colors.h"
 #include "gizmo_draw.h"
 #include "paths.h"
+#include "session_panel.h"
 
 namespace primo::editor {
 namespace fs = std::filesystem;
@@ -420,6 +421,7 @@ void draw_properties(Editor& e, UiState& ui, float top, float height) {
   prisms_section(e);
   display_section(e);
   solver_section(e);
+  session_section(e);
   ImGui::End();
 }
 

@@ -1,0 +1,125 @@
+#include "session_control.h"
+
+#include <algorithm>
+
+#include "editor.h"
+#include "primo/error.h"
+
+namespace primo::editor {
+
+void SessionControl::start_recording(Editor& e) {
+  Document* doc = e.document();
+  if (!doc) return e.error("Nothing to record: no mesh is open");
+  if (playing_) pause(e);
+  recorder_.start(*doc, clock_);
+  has_recording_ = true;
+  doc_ = doc;
+  e.info("Recording the session");
+}
+
+void SessionControl::stop_recording(Editor& e) {
+  if (!recorder_.recording()) return;
+  recorded_ = doc_ == e.document() && e.document() ? recorder_.stop(*e.document(), clock_)
+                                                   : recorder_.session();
+  if (recorder_.recording()) recorder_ = SessionRecorder{};
+  e.info("Recorded " + std::to_string(recorded_.events.size()) + " events over " +
+         std::to_string(recorded_.frames()) + " frames");
+}
+
+void SessionControl::save(Editor& e, const std::string& path) {
+  stop_recording(e);
+  if (!has_recording_) return e.error("No session recorded yet");
+  try {
+    save_session(recorded_, path);
+    e.info("Saved the session to " + path);
+  } catch (const std::exception& ex) {
+    e.error(ex.what());
+  }
+}
+
+void SessionControl::open_playback(Editor& e, const std::string& path) {
+  Document* doc = e.document();
+  if (!doc) return e.error("Open the session's mesh first");
+  try {
+    Session s = load_session(path);
+    validate_session(s, doc->n_faces());  // names the event that does not fit this mesh
+    if (recorder_.recording()) stop_recording(e);
+    playback_initial_ = validate_session(
+        Session{s.source, s.mesh, s.mesh_path, s.solver, s.initial, {}}, doc->n_faces());
+    playback_ = std::move(s);
+    time_ = 0.0;
+    shown_events_ = 0;
+    has_playback_ = true;
+    playing_ = false;
+    doc_ = doc;
+    show(e, 0.0);
+    e.info("Session " + path + ": " + std::to_string(playback_.events.size()) + " events, " +
+           std::to_string(playback_.duration()) + " s");
+  } catch (const std::exception& ex) {
+    e.error(ex.what());
+  }
+}
+
+void SessionControl::play(Editor& e) {
+  if (!has_playback_) return;
+  if (time_ >= duration()) show(e, 0.0);
+  playing_ = true;
+}
+
+void SessionControl::pause(Editor& e) {
+  if (!playing_) return;
+  playing_ = false;
+  e.commit("Session playback");
+}
+
+void SessionControl::seek(Editor& e, double t) {
+  if (!has_playback_) return;
+  show(e, std::clamp(t, 0.0, duration()));
+  if (!playing_) e.commit("Session playback");
+}
+
+void SessionControl::close_playback(Editor& e) {
+  pause(e);
+  has_playback_ = false;
+  playback_ = Session{};
+}
+
+void SessionControl::show(Editor& e, double t) {
+  Document* doc = e.document();
+  if (!doc) return;
+  // Forward: apply the new events; backward: start again from the initial state.
+  size_t n = 0;
+  while (n < playback_.events.size() && playback_.events[n].t <= t) ++n;
+  EditState s = doc->state;
+  size_t from = shown_events_;
+  if (t < time_ || n < shown_events_ || t == 0.0) {
+    s.handles = playback_initial_.handles;
+    s.prisms = playback_initial_.prisms;
+    s.height_factor = playback_initial_.height_factor;
+    s.width_factor = playback_initial_.width_factor;
+    from = 0;
+  }
+  for (size_t i = from; i < n; ++i) apply_event(s, playback_.events[i], doc->n_faces());
+  if (s.active >= int(s.handles.size())) s.active = -1;
+  doc->state = s;
+  time_ = t;
+  shown_events_ = n;
+  e.live_edit();
+}
+
+void SessionControl::update(Editor& e, double seconds) {
+  clock_ += seconds;
+  if (doc_ && doc_ != e.document()) {  // another document was opened
+    if (recorder_.recording()) recorded_ = recorder_.session(), recorder_ = SessionRecorder{};
+    if (has_playback_) playing_ = false, has_playback_ = false;
+    doc_ = nullptr;
+  }
+  if (recorder_.recording() && e.document()) recorder_.observe(*e.document(), clock_);
+  if (playing_) {
+    const double t = std::min(time_ + seconds, duration());
+    show(e, t);
+    if (t >= duration()) pause(e);
+  }
+}
+
+}  // namespace primo::editor

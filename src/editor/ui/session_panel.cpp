@@ -1,0 +1,52 @@
+#include "session_panel.h"
+
+#include <imgui.h>
+#include <imgui_stdlib.h>
+
+#include <filesystem>
+#include <string>
+
+namespace primo::editor {
+
+void session_section(Editor& e) {
+  if (!ImGui::CollapsingHeader("Session")) return;
+  SessionControl& s = e.sessions;
+  static std::string path;
+  const Document* doc = e.document();
+  if (path.empty() && doc)
+    path = (std::filesystem::path(doc->mesh_path).parent_path() / "pose.session.json").string();
+
+  if (!s.recording()) {
+    if (ImGui::Button("Record")) s.start_recording(e);
+  } else {
+    if (ImGui::Button("Stop")) s.stop_recording(e);
+    ImGui::SameLine();
+    ImGui::TextColored(ImVec4(0.95f, 0.3f, 0.3f, 1.0f), "REC %zu events",
+                       s.recording_session().events.size());
+  }
+  ImGui::SetNextItemWidth(-1);
+  ImGui::InputText("##session_path", &path);
+  ImGui::BeginDisabled(!s.has_recording());
+  if (ImGui::Button("Save recording")) s.save(e, path);
+  ImGui::EndDisabled();
+  ImGui::SameLine();
+  if (ImGui::Button("Open for playback")) s.open_playback(e, path);
+
+  if (!s.has_playback()) return;
+  if (s.playing()) {
+    if (ImGui::Button("Pause")) s.pause(e);
+  } else if (ImGui::Button("Play")) {
+    s.play(e);
+  }
+  ImGui::SameLine();
+  float t = float(s.time());
+  ImGui::SetNextItemWidth(-1);
+  if (ImGui::SliderFloat("##timeline", &t, 0.0f, float(s.duration()), "%.2f s")) {
+    if (s.playing()) s.pause(e);
+    s.seek(e, double(t));
+  }
+  ImGui::TextDisabled("%zu events, %d frames", s.playback_session().events.size(),
+                      s.playback_session().frames());
+}
+
+}  // namespace primo::editor

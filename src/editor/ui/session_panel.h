@@ -1,0 +1,11 @@
+#pragma once
+// The "Session" section of the properties panel: record / stop / save a posing session, open
+// one and play it back with play / pause and a timeline slider (docs/sessions.md).
+
+#include "editor.h"
+
+namespace primo::editor {
+
+void session_section(Editor& editor);
+
+}  // namespace primo::editor
