@@ -1,0 +1,135 @@
+// Sessions inside the editor (no window): recording what commands and panels do to the
+// document, saving, and playback with seek and play; the shipped session checks out.
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <sstream>
+
+#include "editor.h"
+#include "primo/mesh_generators.h"
+#include "primo/mesh_io.h"
+#include "session.h"
+#include "test_support.h"
+
+using namespace primo;
+using namespace primo::editor;
+
+namespace {
+
+std::vector<int> faces_with(const Document& d, double y_min, double y_max) {
+  std::vector<int> out;
+  for (int f = 0; f < d.n_faces(); ++f) {
+    const double y = d.topology->rest_geometry.centroid[f].y();
+    if (y >= y_min && y <= y_max) out.push_back(f);
+  }
+  return out;
+}
+
+bool same_handles(const std::vector<HandleGroup>& a, const std::vector<HandleGroup>& b) {
+  if (a.size() != b.size()) return false;
+  for (size_t i = 0; i < a.size(); ++i)
+    if (a[i].name != b[i].name || *a[i].faces != *b[i].faces || !(a[i].pose == b[i].pose)) return false;
+  return true;
+}
+
+}  // namespace
+
+TEST(EditorSessions, RecordSaveAndPlayBack) {
+  const std::string dir = primo::test::temp_dir();
+  save_mesh(make_bar(0.2, 1.0, 2, 10), dir + "/bar.obj");
+  Editor e;
+  e.adopt(make_document(load_mesh(dir + "/bar.obj"), dir + "/bar.obj"));
+  e.update(0.016);
+  e.sessions.start_recording(e);
+  ASSERT_TRUE(e.sessions.recording());
+  Document* d = e.document();
+  add_handle(d->state, *d->topology, d->topology->rest_points, faces_with(*d, -1, 0.05), HandleMode::Fixed);
+  e.commit("fixed");
+  e.update(0.016);
+  const int top = add_handle(d->state, *d->topology, d->topology->rest_points, faces_with(*d, 0.95, 2),
+                             HandleMode::Position);
+  e.commit("top");
+  e.update(0.016);
+  std::vector<std::vector<HandleGroup>> seen;
+  for (int k = 1; k <= 10; ++k) {
+    d->state.handles[size_t(top)].pose.translate = Vec3(0.03 * k, 0.0, 0.0);
+    e.live_edit();
+    e.update(0.016);
+    seen.push_back(d->state.handles);
+  }
+  e.commit("drag");
+  e.update(0.016);
+  e.undo();
+  e.update(0.016);
+  e.redo();
+  e.update(0.016);
+  const std::vector<HandleGroup> final_handles = d->state.handles;
+  e.sessions.save(e, dir + "/s.session.json");
+  EXPECT_FALSE(e.sessions.recording());
+  std::ifstream in(dir + "/s.session.json");
+  std::stringstream text;
+  text << in.rdbuf();
+  EXPECT_NE(text.str().find("\"type\":\"undo\""), std::string::npos);
+  EXPECT_NE(text.str().find("\"type\":\"redo\""), std::string::npos);
+  EXPECT_NE(text.str().find("\"mesh\": \"bar.obj\""), std::string::npos);
+
+  // Play it back on a fresh document of the same mesh.
+  e.adopt(make_document(load_mesh(dir + "/bar.obj"), dir + "/bar.obj"));
+  e.update(0.016);
+  e.sessions.open_playback(e, dir + "/s.session.json");
+  ASSERT_TRUE(e.sessions.has_playback());
+  d = e.document();
+  EXPECT_TRUE(d->state.handles.empty());
+  e.sessions.seek(e, e.sessions.duration());
+  EXPECT_TRUE(same_handles(d->state.handles, final_handles));
+  EXPECT_EQ(d->history.undo_label(), "Session playback");
+  // Scrubbing back to a frame of the drag shows that frame's pose exactly.
+  const Session& s = e.sessions.playback_session();
+  double t5 = -1;
+  for (const SessionEvent& ev : s.events)
+    if (ev.type == SessionEvent::Type::Targets && ev.poses[0].pose.translate.x() == 0.03 * 5) t5 = ev.t;
+  ASSERT_GE(t5, 0.0);
+  e.sessions.seek(e, t5);
+  EXPECT_TRUE(same_handles(d->state.handles, seen[4]));
+  e.sessions.seek(e, 0.0);
+  EXPECT_TRUE(d->state.handles.empty());
+  e.sessions.play(e);
+  for (int i = 0; i < 1000 && e.sessions.playing(); ++i) e.update(0.016);
+  EXPECT_FALSE(e.sessions.playing());
+  EXPECT_TRUE(same_handles(d->state.handles, final_handles));
+}
+
+TEST(EditorSessions, PlaybackRejectsASessionOfAnotherMesh) {
+  const std::string dir = primo::test::temp_dir();
+  save_mesh(make_bar(0.2, 1.0, 2, 10), dir + "/bar.obj");
+  Session s;
+  s.mesh_path = dir + "/bar.obj";
+  SessionEvent ev;
+  ev.type = SessionEvent::Type::Factors;
+  ev.faces = {100000};
+  ev.values = {0.5};
+  s.events.push_back(ev);
+  save_session(s, dir + "/s.session.json");
+  Editor e;
+  e.adopt(make_document(load_mesh(dir + "/bar.obj"), dir + "/bar.obj"));
+  e.update(0.016);
+  e.sessions.open_playback(e, dir + "/s.session.json");
+  EXPECT_FALSE(e.sessions.has_playback());
+  ASSERT_FALSE(e.messages().empty());
+  EXPECT_NE(e.messages().back().text.find("events[0] (factors): faces[0]: face 100000 out of range"),
+            std::string::npos)
+      << e.messages().back().text;
+}
+
+TEST(EditorSessions, ShippedSessionIsValid) {
+  const Session s = load_session(primo::test::source_path("assets/sessions/spot-pose.session.json"));
+  const Mesh mesh = load_mesh(s.mesh_path);
+  const EditState end = validate_session(s, int(mesh.n_faces()));
+  EXPECT_EQ(end.handles.size(), 3u);
+  EXPECT_GT(s.events.size(), 20u);
+  bool undo = false, redo = false;
+  for (const SessionEvent& ev : s.events)
+    undo = undo || ev.type == SessionEvent::Type::Undo, redo = redo || ev.type == SessionEvent::Type::Redo;
+  EXPECT_TRUE(undo && redo);
+}
