@@ -278,3 +278,16 @@ TEST_F(ReplayCli, TruncatedSessionWritesNothing) {
   EXPECT_NE(r.err.find("events["), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(dir + "/out.obj"));
 }
+
+TEST_F(ReplayCli, SameResultWhateverTheLibrariesThreadCount) {
+  const CommandResult a = run_primo("replay " + dir + "/pose.session.json -o " + dir + "/a.obj");
+  const CommandResult b = run_primo("replay " + dir + "/pose.session.json -o " + dir + "/b.obj");
+  ASSERT_EQ(a.exit_code, 0) << a.err;
+  ASSERT_EQ(b.exit_code, 0) << b.err;
+  const std::string env = "OMP_NUM_THREADS=2 OPENBLAS_NUM_THREADS=2 ";
+  const int status = std::system((env + PRIMO_EXECUTABLE + " replay " + dir + "/pose.session.json -o " + dir +
+                                  "/c.obj > /dev/null 2>&1").c_str());
+  ASSERT_EQ(status, 0);
+  EXPECT_EQ(read_file(dir + "/a.obj"), read_file(dir + "/b.obj"));
+  EXPECT_EQ(read_file(dir + "/a.obj"), read_file(dir + "/c.obj"));
+}

@@ -4,6 +4,7 @@
 // against the mesh before anything is solved; frames go to a temporary folder inside DIR and
 // are moved into place only when the replay succeeded, so a failure writes nothing.
 
+#include <dlfcn.h>
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
@@ -32,6 +33,7 @@ struct ReplayArguments {
   std::string stats;
   int every = 1;
   int iterations_per_frame = 1;
+  int threads = 1;
 };
 
 std::string frame_name(int frame) {
@@ -40,7 +42,18 @@ std::string frame_name(int frame) {
   return buf;
 }
 
+// Threaded BLAS (OpenBLAS under CHOLMOD's supernodal factorization) and OpenMP sum in an
+// order that depends on the thread count, so results differ in the last bits between machines.
+// A replay uses one thread by default: the same build gives bitwise the same meshes anywhere.
+// Looked up at run time so that nothing is linked for it.
+void limit_threads(int threads) {
+  if (threads <= 0) return;
+  if (auto f = reinterpret_cast<void (*)(int)>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"))) f(threads);
+  if (auto f = reinterpret_cast<void (*)(int)>(dlsym(RTLD_DEFAULT, "omp_set_num_threads"))) f(threads);
+}
+
 int run_replay(const ReplayArguments& args) {
+  limit_threads(args.threads);
   const auto start = std::chrono::steady_clock::now();
   check_mesh_output_path(args.output);
   if (!args.frames.empty() && !fs::is_directory(fs::absolute(fs::path(args.frames)).parent_path()))
@@ -113,6 +126,10 @@ Command register_replay(CLI::App& app) {
   cmd->add_option("--iterations-per-frame", args->iterations_per_frame,
                   "Solver iterations after each frame (default 1, as the editor while dragging)")
       ->check(CLI::Range(1, 1000));
+  cmd->add_option("--threads", args->threads,
+                  "BLAS/OpenMP threads (default 1: bitwise the same result on every machine; 0: "
+                  "the libraries' default, faster on big meshes but machine-dependent in the last bits)")
+      ->check(CLI::Range(0, 1024));
   cmd->add_option("--stats", args->stats, "Write replay statistics as JSON");
   return {cmd, [args] { return run_replay(*args); }};
 }
