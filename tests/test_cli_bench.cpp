@@ -177,3 +177,23 @@ TEST(BenchCli, DragSkipsAMissingSharedMeshButNotAMissingPath) {
   EXPECT_NE(missing.exit_code, 0);
   EXPECT_NE(missing.err.find("no such mesh file"), std::string::npos) << missing.err;
 }
+
+TEST(BenchCli, DragOnlyAndSolverSettings) {
+  const std::string json = primo::test::temp_dir() + "/drag.json";
+  const CommandResult r = run_primo(
+      "bench drag " + primo::test::source_path("assets/scenarios/bench/spot-reach.json") +
+      " --frames 3 --drag-only --fine-sweeps 3 --coarse-iterations 2 --json " + json);
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  const nlohmann::json d = read_json(json);
+  EXPECT_TRUE(d["drag_only"].get<bool>());
+  EXPECT_EQ(d["frame_seconds"].size(), 3u);
+  EXPECT_TRUE(d.contains("median_ms"));
+  EXPECT_TRUE(d.contains("peak_memory_mb"));
+  EXPECT_FALSE(d.contains("converged_energy"));
+  EXPECT_FALSE(d.contains("full_solve"));
+  EXPECT_EQ(d["hierarchical_settings"]["fine_sweeps"].get<int>(), 3);
+  EXPECT_EQ(d["hierarchical_settings"]["coarse_iterations"].get<int>(), 2);
+  EXPECT_FALSE(d["hierarchical_settings"]["core_defaults"].get<bool>());
+  // Two coarse Newton iterations, so at least two factorizations, per frame.
+  EXPECT_GE(d["profile"]["per_frame_ms"]["factorizations"].get<double>(), 2.0);
+}

@@ -595,6 +595,8 @@ struct BenchDragArguments {
   std::string mesh;
   int subdivide = 0;
   bool bbox_handles = false;
+  bool drag_only = false;  // no convergence afterwards, no full solve: for repeated timings
+  HierarchicalOptions hierarchical;  // the core's defaults unless the experiment flags say otherwise
 };
 
 constexpr double kDragConvergeTolerance = 1e-7;
@@ -786,7 +788,7 @@ struct Breakdown {
   double line_search = 0.0;
   double sweeps = 0.0;
   double vertex_update = 0.0;
-  int factorizations = 0;
+  double factorizations = 0.0;  // count (per frame after per())
 
   double newton() const { return assembly + factorization + solve + line_search; }
   double other() const {
@@ -808,7 +810,8 @@ struct Breakdown {
     Breakdown b = *this;
     const double k = n > 0 ? 1.0 / n : 0.0;
     for (double* x : {&b.total, &b.set_targets, &b.restrict_prolong, &b.coarse, &b.assembly,
-                      &b.factorization, &b.solve, &b.line_search, &b.sweeps, &b.vertex_update})
+                      &b.factorization, &b.solve, &b.line_search, &b.sweeps, &b.vertex_update,
+                      &b.factorizations})
       *x *= k;
     return b;
   }
@@ -841,6 +844,7 @@ struct DragRun {
   SolveReport converge;
   Breakdown converge_profile;
   double memory_after_drag_mb = 0.0;
+  double memory_after_converge_mb = 0.0;
 };
 
 struct FullSolveRun {
@@ -868,18 +872,13 @@ void set_targets(Deformer& deformer, const DragCase& c, double s) {
 
 double g_sink = 0.0;  // keeps the vertex read from being optimized away
 
-DragRun run_drag(const DragCase& c, SolveMethod method, int frames) {
-  DragRun run;
-  run.faces = int(c.mesh.n_faces());
-  run.vertices = int(c.mesh.n_vertices());
-  auto start = Clock::now();
-  Deformer deformer(c.mesh, c.prisms, c.handles, c.forces);
-  run.setup_seconds = seconds_since(start);
+// The drag on `deformer` (made with the final targets): targets back to rest, then N frames.
+void run_frames(Deformer& deformer, const DragCase& c, const SolveOptions& base, int frames,
+                DragRun& run) {
   set_targets(deformer, c, 0.0);  // every handle and force back at rest
   deformer.reset();
 
-  SolveOptions frame;
-  frame.method = method;
+  SolveOptions frame = base;
   frame.max_iterations = 1;
   frame.tolerance = 0.0;
   for (int k = 1; k <= frames; ++k) {
@@ -906,31 +905,33 @@ DragRun run_drag(const DragCase& c, SolveMethod method, int frames) {
 
   // One energy evaluation, for reading "other": Deformer::solve evaluates the energy before
   // iterating, and a hierarchical cycle once more after its sweeps.
-  start = Clock::now();
+  const auto start = Clock::now();
   constexpr int kEvaluations = 5;
   for (int i = 0; i < kEvaluations; ++i) g_sink += deformer.energy();
   run.energy_evaluation_seconds = seconds_since(start) / kEvaluations;
+  run.memory_after_drag_mb = peak_memory_mb();
+}
 
-  SolveOptions converge;
-  converge.method = method;
+// After the last frame: on with the same method to the convergence tolerance.
+void run_converge(Deformer& deformer, const SolveOptions& base, DragRun& run) {
+  SolveOptions converge = base;
   converge.max_iterations = kDragConvergeMaxIterations;
   converge.tolerance = kDragConvergeTolerance;
   const SolverClock before = SolverClock::read(deformer);
-  start = Clock::now();
+  const auto start = Clock::now();
   run.converge = deformer.solve(converge);
   run.converge_profile.total = seconds_since(start);
   run.converge_profile.add_solver(before, SolverClock::read(deformer));
-  run.memory_after_drag_mb = peak_memory_mb();
-  return run;
+  run.memory_after_converge_mb = peak_memory_mb();
 }
 
 // A fresh deformer with the final targets (its initial state), solved to convergence; then,
 // on another fresh one, the same solve cut off at the first iteration within 1% of the
 // converged energy, timed: the iterations are deterministic, so it is the same path.
-FullSolveRun run_full_solve(const DragCase& c, SolveMethod method) {
+FullSolveRun run_full_solve(const DragCase& c, const SolveOptions& base) {
   FullSolveRun run;
-  SolveOptions options;
-  options.method = method;
+  const SolveMethod method = base.method;
+  SolveOptions options = base;
   options.max_iterations = kDragConvergeMaxIterations;
   options.tolerance = kDragConvergeTolerance;
   {
@@ -1048,37 +1049,96 @@ int run_bench_drag(const BenchDragArguments& args) {
   for (const Handle& h : c.handles)
     std::printf(" %s (%zu faces)", h.name.empty() ? "-" : h.name.c_str(), h.faces.size());
   std::printf("; %zu forces\n", c.forces.size());
-  std::printf("Solver     %s, %d frames of one iteration each; then to relative change %.0e\n\n",
-              method_label(method), args.frames, kDragConvergeTolerance);
+  std::printf("Solver     %s, %d frames of one iteration each%s\n", method_label(method),
+              args.frames, args.drag_only ? " (--drag-only)" : "");
+  SolveOptions base;
+  base.method = method;
+  base.hierarchical = args.hierarchical;
+  const HierarchicalOptions defaults;
+  const bool tuned = args.hierarchical.hierarchy.coarsest_max_bodies !=
+                         defaults.hierarchy.coarsest_max_bodies ||
+                     args.hierarchical.hierarchy.cluster_size != defaults.hierarchy.cluster_size ||
+                     args.hierarchical.sweeps_per_level != defaults.sweeps_per_level ||
+                     args.hierarchical.intermediate_sweeps != defaults.intermediate_sweeps ||
+                     args.hierarchical.coarse_iterations != defaults.coarse_iterations;
+  const nlohmann::json settings = {
+      {"cluster_size", args.hierarchical.hierarchy.cluster_size},
+      {"coarsest_max_bodies", args.hierarchical.hierarchy.coarsest_max_bodies},
+      {"fine_sweeps", args.hierarchical.sweeps_per_level},
+      {"intermediate_sweeps", args.hierarchical.intermediate_sweeps},
+      {"coarse_iterations", args.hierarchical.coarse_iterations},
+      {"core_defaults", !tuned}};
+  if (method == SolveMethod::Hierarchical) {
+    out["hierarchical_settings"] = settings;
+    std::printf("           hierarchy: clusters of %d, coarsest <= %d bodies, %d fine sweeps, %d "
+                "intermediate sweeps, %d coarse Newton iterations per cycle%s\n",
+                args.hierarchical.hierarchy.cluster_size,
+                args.hierarchical.hierarchy.coarsest_max_bodies,
+                args.hierarchical.sweeps_per_level, args.hierarchical.intermediate_sweeps,
+                args.hierarchical.coarse_iterations, tuned ? " (NOT the core's defaults)" : "");
+  }
+  std::printf("\n");
   std::fflush(stdout);
 
   // 1: the drag, then on to convergence.
-  const DragRun drag = run_drag(c, method, args.frames);
-  const double median_ms = 1e3 * median_of(drag.frame_seconds);
-  const double max_ms = 1e3 * *std::max_element(drag.frame_seconds.begin(), drag.frame_seconds.end());
-  const double max_later_ms =
-      drag.frame_seconds.size() > 1
-          ? 1e3 * *std::max_element(drag.frame_seconds.begin() + 1, drag.frame_seconds.end())
-          : max_ms;
-  const double final_energy = drag.frame_energies.back();
-  const double converged_energy = drag.converge.energy;
-  const double gap = converged_energy > 0 ? final_energy / converged_energy - 1.0 : 0.0;
-  if (!drag.level_bodies.empty()) {
-    std::printf("Hierarchy  %zu levels, bodies:", drag.level_bodies.size());
-    for (size_t l = 0; l < drag.level_bodies.size(); ++l)
-      std::printf("%s %d", l ? " ->" : "", drag.level_bodies[l]);
-    std::printf("\n\n");
+  DragRun drag;
+  drag.faces = int(c.mesh.n_faces());
+  drag.vertices = int(c.mesh.n_vertices());
+  {
+    const auto start = Clock::now();
+    Deformer deformer(c.mesh, c.prisms, c.handles, c.forces);
+    drag.setup_seconds = seconds_since(start);
+    run_frames(deformer, c, base, args.frames, drag);
+
+    const double median_ms = 1e3 * median_of(drag.frame_seconds);
+    const double max_ms =
+        1e3 * *std::max_element(drag.frame_seconds.begin(), drag.frame_seconds.end());
+    const double max_later_ms =
+        drag.frame_seconds.size() > 1
+            ? 1e3 * *std::max_element(drag.frame_seconds.begin() + 1, drag.frame_seconds.end())
+            : max_ms;
+    if (!drag.level_bodies.empty()) {
+      std::printf("Hierarchy  %zu levels, bodies:", drag.level_bodies.size());
+      for (size_t l = 0; l < drag.level_bodies.size(); ++l)
+        std::printf("%s %d", l ? " ->" : "", drag.level_bodies[l]);
+      std::printf("\n\n");
+    }
+    std::printf("Drag (%d frames; deformer setup %.3f s, not in the frames)\n", args.frames,
+                drag.setup_seconds);
+    std::printf("  %8s %10s %10s %10s %10s %14s\n", "faces", "median ms", "max ms", "first ms",
+                "max 2..N", "final energy");
+    std::printf("  %8d %10.2f %10.2f %10.2f %10.2f %14.6e\n\n", drag.faces, median_ms, max_ms,
+                1e3 * drag.frame_seconds.front(), max_later_ms, drag.frame_energies.back());
+    std::fflush(stdout);
+    out["frame_seconds"] = drag.frame_seconds;
+    out["frame_energies"] = drag.frame_energies;
+    out["median_ms"] = median_ms;
+    out["max_ms"] = max_ms;
+    out["first_frame_ms"] = 1e3 * drag.frame_seconds.front();
+    out["max_ms_after_first"] = max_later_ms;
+    out["final_energy"] = drag.frame_energies.back();
+
+    if (!args.drag_only) {
+      run_converge(deformer, base, drag);
+      const double final_energy = drag.frame_energies.back();
+      const double converged = drag.converge.energy;
+      const double gap = converged > 0 ? final_energy / converged - 1.0 : 0.0;
+      std::printf("Solving on after the last frame (relative change %.0e, at most %d iterations)\n",
+                  kDragConvergeTolerance, kDragConvergeMaxIterations);
+      std::printf("  %14s %14s %10s %10s %6s  %s\n", "final energy", "converged E", "gap %",
+                  "seconds", "iters", "stop");
+      std::printf("  %14.6e %14.6e %10.3f %10.3f %6d  %s\n\n", final_energy, converged,
+                  100.0 * gap, drag.converge.seconds, drag.converge.iterations,
+                  drag.converge.stop_reason.c_str());
+      out["converged_energy"] = converged;
+      out["final_gap"] = gap;
+      out["converge_seconds"] = drag.converge.seconds;
+      out["converge_iterations"] = drag.converge.iterations;
+      out["converge_stop_reason"] = drag.converge.stop_reason;
+      out["converge_tolerance"] = kDragConvergeTolerance;
+      out["converge_max_iterations"] = kDragConvergeMaxIterations;
+    }
   }
-  std::printf("Drag (%d frames; deformer setup %.3f s, not in the frames)\n", args.frames,
-              drag.setup_seconds);
-  std::printf("  %8s %10s %10s %10s %10s %14s %14s %8s %10s %6s\n", "faces", "median ms",
-              "max ms", "first ms", "max 2..N", "final energy", "converged E", "gap %",
-              "converge s", "iters");
-  std::printf("  %8d %10.2f %10.2f %10.2f %10.2f %14.6e %14.6e %8.3f %10.3f %6d  %s\n",
-              drag.faces, median_ms, max_ms, 1e3 * drag.frame_seconds.front(), max_later_ms,
-              final_energy, converged_energy, 100.0 * gap, drag.converge.seconds,
-              drag.converge.iterations, drag.converge.stop_reason.c_str());
-  std::printf("\n");
 
   const int later = int(drag.frame_seconds.size()) - 1;
   std::printf("Where the time goes (ms; 'coarse' contains the coarse Newton columns after it)\n");
@@ -1087,29 +1147,61 @@ int run_bench_drag(const BenchDragArguments& args) {
               "vertices", "other");
   print_breakdown_row("first frame", drag.first_frame, method);
   if (later > 0) print_breakdown_row("per frame, 2..N", drag.later_frames.per(later), method);
-  print_breakdown_row("converge (total)", drag.converge_profile, method);
+  if (!args.drag_only) print_breakdown_row("converge (total)", drag.converge_profile, method);
   std::printf("  (one energy evaluation: %.2f ms; 'other' also holds building the solver on "
               "first use)\n\n",
               1e3 * drag.energy_evaluation_seconds);
   std::fflush(stdout);
+  nlohmann::json profile;
+  profile["first_frame_ms"] = drag.first_frame.to_json_ms();
+  profile["per_frame_ms"] = drag.later_frames.per(later).to_json_ms();
+  profile["per_frame_frames"] = later;
+  profile["energy_evaluation_ms"] = 1e3 * drag.energy_evaluation_seconds;
+  if (!args.drag_only) profile["converge_ms"] = drag.converge_profile.to_json_ms();
 
   // 2: the final pose from rest.
-  const FullSolveRun full = run_full_solve(c, method);
-  std::printf("Full solve from rest (final targets; relative change %.0e)\n",
-              kDragConvergeTolerance);
-  std::printf("  %8s %9s %9s %9s %6s %12s %8s %14s  %s\n", "setup s", "hier. s", "solve s",
-              "to 1% s", "iters", "iters to 1%", "", "energy", "stop");
-  std::printf("  %8.3f %9.3f %9.3f %9.3f %6d %12d %8s %14.6e  %s\n", full.setup_seconds,
-              full.hierarchy_build_seconds, full.report.seconds, full.seconds_to_perceived,
-              full.report.iterations, full.iterations_to_perceived, "", full.report.energy,
-              full.report.stop_reason.c_str());
-  print_breakdown_row("full solve (total)", full.profile, method);
-  std::printf("\n");
+  FullSolveRun full;
+  if (!args.drag_only) {
+    std::printf("Full solve from rest (final targets; relative change %.0e) ...\n",
+                kDragConvergeTolerance);
+    std::fflush(stdout);
+    full = run_full_solve(c, base);
+    std::printf("  %8s %9s %9s %9s %6s %12s %14s  %s\n", "setup s", "hier. s", "solve s",
+                "to 1% s", "iters", "iters to 1%", "energy", "stop");
+    std::printf("  %8.3f %9.3f %9.3f %9.3f %6d %12d %14.6e  %s\n", full.setup_seconds,
+                full.hierarchy_build_seconds, full.report.seconds, full.seconds_to_perceived,
+                full.report.iterations, full.iterations_to_perceived, full.report.energy,
+                full.report.stop_reason.c_str());
+    print_breakdown_row("full solve (total)", full.profile, method);
+    std::printf("\n");
+    out["full_solve"] = {{"setup_seconds", full.setup_seconds},
+                         {"hierarchy_build_seconds", full.hierarchy_build_seconds},
+                         {"seconds", full.report.seconds},
+                         {"iterations", full.report.iterations},
+                         {"initial_energy", full.report.initial_energy},
+                         {"energy", full.report.energy},
+                         {"stop_reason", full.report.stop_reason},
+                         {"energies", full.report.energies},
+                         {"within", kPerceivedGap},
+                         {"iterations_to_within", full.iterations_to_perceived},
+                         {"seconds_to_within", full.seconds_to_perceived}};
+    profile["full_solve_ms"] = full.profile.to_json_ms();
+  }
+  out["profile"] = profile;
 
   const double peak = peak_memory_mb();
-  std::printf("Peak memory (ru_maxrss)  %.1f MB: after mesh %.1f, after drag + converge %.1f, "
-              "after full solves %.1f\n\n",
-              peak, memory_after_mesh, drag.memory_after_drag_mb, full.memory_after_mb);
+  std::printf("Peak memory (ru_maxrss)  %.1f MB: after mesh %.1f, after drag %.1f", peak,
+              memory_after_mesh, drag.memory_after_drag_mb);
+  if (!args.drag_only)
+    std::printf(", after converge %.1f, after full solves %.1f", drag.memory_after_converge_mb,
+                full.memory_after_mb);
+  std::printf("\n\n");
+  out["peak_memory_mb"] = peak;
+  out["memory_mb"] = {{"after_mesh", memory_after_mesh}, {"after_drag", drag.memory_after_drag_mb}};
+  if (!args.drag_only) {
+    out["memory_mb"]["after_converge"] = drag.memory_after_converge_mb;
+    out["memory_mb"]["after_full_solves"] = full.memory_after_mb;
+  }
 
   const std::vector<double> load_after = load_average();
   const std::string cpu = cpu_model();
@@ -1117,7 +1209,7 @@ int run_bench_drag(const BenchDragArguments& args) {
   const std::vector<std::string> blas = mapped_blas_libraries();
   std::printf("Machine    %s, %u hardware threads, OPENBLAS_NUM_THREADS=%s\n", cpu.c_str(),
               threads, blas_threads ? blas_threads : "(unset)");
-  std::printf("           load average before %.2f, after %.2f\n", load_before[0],
+  std::printf("           load average (1 min) before %.2f, after %.2f\n", load_before[0],
               load_after[0]);
   for (const std::string& b : blas) std::printf("           BLAS %s\n", b.c_str());
   std::fflush(stdout);
@@ -1134,43 +1226,7 @@ int run_bench_drag(const BenchDragArguments& args) {
   out["subdivide_seconds"] = c.subdivide_seconds;
   out["setup_seconds"] = drag.setup_seconds;
   out["hierarchy_bodies"] = drag.level_bodies;
-  out["frame_seconds"] = drag.frame_seconds;
-  out["frame_energies"] = drag.frame_energies;
-  out["median_ms"] = median_ms;
-  out["max_ms"] = max_ms;
-  out["first_frame_ms"] = 1e3 * drag.frame_seconds.front();
-  out["max_ms_after_first"] = max_later_ms;
-  out["final_energy"] = final_energy;
-  out["converged_energy"] = converged_energy;
-  out["final_gap"] = gap;
-  out["converge_seconds"] = drag.converge.seconds;
-  out["converge_iterations"] = drag.converge.iterations;
-  out["converge_stop_reason"] = drag.converge.stop_reason;
-  out["converge_tolerance"] = kDragConvergeTolerance;
-  out["converge_max_iterations"] = kDragConvergeMaxIterations;
-  out["full_solve"] = {{"setup_seconds", full.setup_seconds},
-                       {"hierarchy_build_seconds", full.hierarchy_build_seconds},
-                       {"seconds", full.report.seconds},
-                       {"iterations", full.report.iterations},
-                       {"initial_energy", full.report.initial_energy},
-                       {"energy", full.report.energy},
-                       {"stop_reason", full.report.stop_reason},
-                       {"energies", full.report.energies},
-                       {"within", kPerceivedGap},
-                       {"iterations_to_within", full.iterations_to_perceived},
-                       {"seconds_to_within", full.seconds_to_perceived}};
-  nlohmann::json profile;
-  profile["first_frame_ms"] = drag.first_frame.to_json_ms();
-  profile["per_frame_ms"] = drag.later_frames.per(later).to_json_ms();
-  profile["per_frame_frames"] = later;
-  profile["converge_ms"] = drag.converge_profile.to_json_ms();
-  profile["full_solve_ms"] = full.profile.to_json_ms();
-  profile["energy_evaluation_ms"] = 1e3 * drag.energy_evaluation_seconds;
-  out["profile"] = profile;
-  out["peak_memory_mb"] = peak;
-  out["memory_mb"] = {{"after_mesh", memory_after_mesh},
-                      {"after_drag_and_converge", drag.memory_after_drag_mb},
-                      {"after_full_solves", full.memory_after_mb}};
+  out["drag_only"] = args.drag_only;
   out["machine"] = {{"cpu_model", cpu},
                     {"hardware_threads", threads},
                     {"blas_libraries", blas},
@@ -1217,6 +1273,30 @@ Command register_bench(CLI::App& app) {
   drag->add_flag("--bbox-handles", drag_args->bbox_handles,
                  "Ignore the scenario's regions, handles and forces: bottom tenth (y) fixed, top "
                  "tenth turned 30 deg about x and moved a tenth of the diagonal along +z");
+  drag->add_flag("--drag-only", drag_args->drag_only,
+                 "Only the frames: no solving on to convergence, no full solve from rest");
+  // Experiments with the hierarchical solver's settings (SolveOptions::hierarchical); the
+  // defaults are the core's, which the editor and `primo deform` use.
+  HierarchicalOptions& h = drag_args->hierarchical;
+  const char* group = "Hierarchical solver settings (experiments; default: the core's)";
+  drag->add_option("--cluster-size", h.hierarchy.cluster_size, "Bodies per cluster")
+      ->check(CLI::Range(2, 1000))
+      ->group(group);
+  drag->add_option("--coarsest-max-bodies", h.hierarchy.coarsest_max_bodies,
+                   "Coarsen until the coarsest level has at most this many bodies")
+      ->check(CLI::Range(1, 10000000))
+      ->group(group);
+  drag->add_option("--fine-sweeps", h.sweeps_per_level, "Local sweeps on the fine level per cycle")
+      ->check(CLI::Range(0, 1000))
+      ->group(group);
+  drag->add_option("--intermediate-sweeps", h.intermediate_sweeps,
+                   "Local sweeps on each intermediate level per cycle")
+      ->check(CLI::Range(0, 1000))
+      ->group(group);
+  drag->add_option("--coarse-iterations", h.coarse_iterations,
+                   "Newton iterations on the coarsest level per cycle")
+      ->check(CLI::Range(0, 1000))
+      ->group(group);
 
   return {bench, [engine, engine_args, drag, drag_args]() -> int {
             if (engine->parsed()) return run_bench_engine(*engine_args);
