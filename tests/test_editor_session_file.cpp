@@ -291,3 +291,25 @@ TEST_F(ReplayCli, SameResultWhateverTheLibrariesThreadCount) {
   EXPECT_EQ(read_file(dir + "/a.obj"), read_file(dir + "/b.obj"));
   EXPECT_EQ(read_file(dir + "/a.obj"), read_file(dir + "/c.obj"));
 }
+
+TEST_F(ReplayCli, ReplaysOnAFinerVersionOfTheMesh) {
+  save_mesh(make_bar(0.2, 1.0, 4, 20), dir + "/bar-fine.obj");  // every quad split in four
+  const CommandResult c = run_primo("replay " + dir + "/pose.session.json -o " + dir + "/coarse.obj");
+  const CommandResult f = run_primo("replay " + dir + "/pose.session.json --mesh " + dir +
+                                    "/bar-fine.obj -o " + dir + "/fine.obj --frames " + dir + "/ff --every 8");
+  ASSERT_EQ(c.exit_code, 0) << c.err;
+  ASSERT_EQ(f.exit_code, 0) << f.err;
+  const Mesh coarse = load_mesh(dir + "/coarse.obj"), fine = load_mesh(dir + "/fine.obj");
+  EXPECT_EQ(fine.n_faces(), 4 * coarse.n_faces());
+  auto box = [](const Mesh& m) {
+    Vec3 lo = Vec3::Constant(1e9), hi = Vec3::Constant(-1e9);
+    for (auto v : m.vertices()) lo = lo.cwiseMin(m.point(v)), hi = hi.cwiseMax(m.point(v));
+    return std::make_pair(lo, hi);
+  };
+  const auto [clo, chi] = box(coarse);
+  const auto [flo, fhi] = box(fine);
+  EXPECT_GT(chi.x(), 0.2);  // the top moved right...
+  EXPECT_LT((chi - fhi).norm(), 0.03);  // ...and the finer bar follows the same pose
+  EXPECT_LT((clo - flo).norm(), 0.03);
+  EXPECT_TRUE(fs::exists(dir + "/ff/frame_000008.obj"));
+}

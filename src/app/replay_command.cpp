@@ -31,6 +31,7 @@ struct ReplayArguments {
   std::string output;
   std::string frames;
   std::string stats;
+  std::string mesh;
   int every = 1;
   int iterations_per_frame = 1;
   int threads = 1;
@@ -60,8 +61,16 @@ int run_replay(const ReplayArguments& args) {
     throw Error(args.frames + ": the folder " + fs::absolute(fs::path(args.frames)).parent_path().string() +
                 " does not exist");
   const editor::Session session = editor::load_session(args.session);
-  const Mesh mesh = load_mesh(session.mesh_path);
-  editor::validate_session(session, int(mesh.n_faces()));  // before anything is written
+  editor::Session session_on_mesh;
+  Mesh mesh = load_mesh(session.mesh_path);
+  if (!args.mesh.empty()) {  // a finer version of the recorded mesh
+    Mesh fine = load_mesh(args.mesh);
+    session_on_mesh = editor::map_session_to_mesh(session, mesh, fine);
+    mesh = std::move(fine);
+  } else {
+    session_on_mesh = session;
+  }
+  editor::validate_session(session_on_mesh, int(mesh.n_faces()));  // before anything is written
 
   fs::path temp;
   std::vector<std::string> written;
@@ -79,7 +88,7 @@ int run_replay(const ReplayArguments& args) {
   }
   editor::ReplayResult result;
   try {
-    result = editor::replay_session(session, mesh, options);
+    result = editor::replay_session(session_on_mesh, mesh, options);
     Mesh final_mesh = mesh;
     for (auto v : final_mesh.vertices()) final_mesh.set_point(v, result.positions[size_t(v.idx())]);
     const double seconds =
@@ -130,6 +139,9 @@ Command register_replay(CLI::App& app) {
                   "BLAS/OpenMP threads (default 1: bitwise the same result on every machine; 0: "
                   "the libraries' default, faster on big meshes but machine-dependent in the last bits)")
       ->check(CLI::Range(0, 1024));
+  cmd->add_option("--mesh", args->mesh,
+                  "Replay on this finer version of the recorded mesh (e.g. subdivided): faces are "
+                  "matched by nearest centroid");
   cmd->add_option("--stats", args->stats, "Write replay statistics as JSON");
   return {cmd, [args] { return run_replay(*args); }};
 }

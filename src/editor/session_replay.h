@@ -47,3 +47,14 @@ ReplayResult replay_session(const Session& session, const Mesh& mesh, const Repl
 std::vector<Vec3> solve_from_rest(const EditState& state, const Mesh& mesh, const SolverSpec& spec);
 
 }  // namespace primo::editor
+
+namespace primo::editor {
+
+// The session carried over to a finer version of the same surface (e.g. subdivided): every
+// face of `fine` takes the face of `coarse` whose centroid is nearest its own, and handles and
+// painted factors select the fine faces of their coarse faces. Poses are unchanged (the same
+// rigid motions about the same pivots), so the posing is the same. Validates the session on
+// `coarse` first (errors name the event). Throws primo::Error when a handle ends up empty.
+Session map_session_to_mesh(const Session& session, const Mesh& coarse, const Mesh& fine);
+
+}  // namespace primo::editor
