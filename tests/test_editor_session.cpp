@@ -50,10 +50,10 @@ class CentroidPicker : public Picker {
   const Editor& e_;
 };
 
-struct Session {
+struct Harness {
   Editor editor;
   CentroidPicker picker{editor};
-  Session() {
+  Harness() {
     editor.set_viewport({0, 0, 800, 600, 1.0});
     editor.set_picker(&picker);
     editor.adopt(make_document(make_bar(0.2, 1.0, 2, 10), ""));
@@ -111,7 +111,7 @@ double max_distance(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
 }  // namespace
 
 TEST(EditorSession, DragIsOneStepAndUndoRestoresTheMesh) {
-  Session s;
+  Harness s;
   s.two_handles();
   ASSERT_EQ(s.editor.document()->state.handles.size(), 2u);
   EXPECT_EQ(s.editor.tools.tool, Tool::Drag) << "making a handle switches to dragging";
@@ -148,7 +148,7 @@ TEST(EditorSession, DragIsOneStepAndUndoRestoresTheMesh) {
 }
 
 TEST(EditorSession, RightButtonCancelsADrag) {
-  Session s;
+  Harness s;
   s.two_handles();
   const size_t steps = s.editor.document()->history.size();
   double x, y;
@@ -164,7 +164,7 @@ TEST(EditorSession, RightButtonCancelsADrag) {
 }
 
 TEST(EditorSession, FixedRegionsDoNotMoveAndPositionHandlesLetOrientationFollow) {
-  Session s;
+  Harness s;
   s.two_handles();
   s.drag("Fixed 1", 60, 0);  // the fixed base
   EXPECT_TRUE(s.editor.document()->state.handles[0].pose.is_identity());
@@ -184,7 +184,7 @@ TEST(EditorSession, FixedRegionsDoNotMoveAndPositionHandlesLetOrientationFollow)
 }
 
 TEST(EditorSession, BrushSelectPaintAndShortcuts) {
-  Session s;
+  Harness s;
   Document& d = *s.editor.document();
   s.key(GLFW_KEY_Q);
   s.key(GLFW_KEY_C);
@@ -236,7 +236,7 @@ TEST(EditorSession, CommandsWithoutAMeshOrSelectionExplainThemselves) {
   Editor e;
   e.make_handle(HandleMode::Pose);  // no document: nothing happens
   e.undo();
-  Session s;
+  Harness s;
   s.editor.make_handle(HandleMode::Pose);
   ASSERT_FALSE(s.editor.messages().empty());
   EXPECT_TRUE(s.editor.messages().back().error);
@@ -244,7 +244,7 @@ TEST(EditorSession, CommandsWithoutAMeshOrSelectionExplainThemselves) {
 }
 
 TEST(EditorSession, DroppedFilesOpenInTheBackground) {
-  Session s;
+  Harness s;
   const std::string path = std::string(PRIMO_SOURCE_DIR) + "/assets/meshes/cylinder.obj";
   s.editor.handle_event(InputEvent::drop({path}), false, false);
   EXPECT_TRUE(s.editor.file_task_running());
@@ -262,7 +262,7 @@ TEST(EditorSession, DroppedFilesOpenInTheBackground) {
 }
 
 TEST(EditorSession, GizmoMovesAndRotatesTheActiveHandleExactly) {
-  Session s;
+  Harness s;
   s.two_handles();
   Document& d = *s.editor.document();
   s.key(GLFW_KEY_W);
@@ -314,7 +314,7 @@ TEST(EditorSession, GizmoMovesAndRotatesTheActiveHandleExactly) {
 }
 
 TEST(EditorSession, OrientationHandlesTurnWhenDragged) {
-  Session s;
+  Harness s;
   s.two_handles();
   s.editor.set_handle_mode(1, HandleMode::Orientation);
   s.drag("Handle 2", 60, 0);
