@@ -50,20 +50,14 @@ Scenario export_scenario(const EditState& state, const std::string& mesh_path,
   s.prisms.normal_blend = state.prisms.normal_blend;
   s.solver = solver;
 
-  for (const FactorGroup& g : group_factors(state.height_factor)) {
-    RegionSpec r;
-    r.name = value_label("height", g.value);
-    r.select = faces_selection(g.faces);
-    r.height = g.value;
-    s.regions.push_back(std::move(r));
-  }
-  for (const FactorGroup& g : group_factors(state.width_factor)) {
-    RegionSpec r;
-    r.name = value_label("width", g.value);
-    r.select = faces_selection(g.faces);
-    r.width = g.value;
-    s.regions.push_back(std::move(r));
-  }
+  for (PaintLayer layer : {PaintLayer::Height, PaintLayer::Width})
+    for (const FactorGroup& g : group_factors(layer_factors(state, layer))) {
+      RegionSpec r;
+      r.name = value_label(layer == PaintLayer::Height ? "height" : "width", g.value);
+      r.select = faces_selection(g.faces);
+      (layer == PaintLayer::Height ? r.height : r.width) = g.value;
+      s.regions.push_back(std::move(r));
+    }
 
   for (const HandleGroup& g : state.handles) {
     if (g.mode == HandleMode::Spring) {

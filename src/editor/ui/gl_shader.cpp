@@ -20,8 +20,15 @@ std::string read_file(const std::string& path) {
   return s.str();
 }
 
-std::string trimmed(std::string log) {
-  while (!log.empty() && (log.back() == '\n' || log.back() == '\0' || log.back() == ' ')) log.pop_back();
+// The driver's log of a shader or program, without trailing blanks.
+template <class Get, class GetLog>
+std::string info_log(GLuint object, Get get, GetLog get_log) {
+  GLint length = 0;
+  get(object, GL_INFO_LOG_LENGTH, &length);
+  std::vector<char> text(size_t(std::max(length, 1)), '\0');
+  get_log(object, length, nullptr, text.data());
+  std::string log(text.data());
+  while (!log.empty() && (log.back() == '\n' || log.back() == ' ')) log.pop_back();
   return log;
 }
 
@@ -34,12 +41,9 @@ GLuint compile(GLenum type, const std::string& path) {
   GLint ok = 0;
   glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
   if (!ok) {
-    GLint length = 0;
-    glGetShaderiv(shader, GL_INFO_LOG_LENGTH, &length);
-    std::vector<char> log(size_t(std::max(length, 1)), '\0');
-    glGetShaderInfoLog(shader, length, nullptr, log.data());
+    const std::string log = info_log(shader, glGetShaderiv, glGetShaderInfoLog);
     glDeleteShader(shader);
-    throw Error(path + ": shader does not compile: " + trimmed(log.data()));
+    throw Error(path + ": shader does not compile: " + log);
   }
   return shader;
 }
@@ -66,13 +70,10 @@ ShaderProgram::ShaderProgram(const std::string& folder, const std::string& verte
   GLint ok = 0;
   glGetProgramiv(program_, GL_LINK_STATUS, &ok);
   if (!ok) {
-    GLint length = 0;
-    glGetProgramiv(program_, GL_INFO_LOG_LENGTH, &length);
-    std::vector<char> log(size_t(std::max(length, 1)), '\0');
-    glGetProgramInfoLog(program_, length, nullptr, log.data());
+    const std::string log = info_log(program_, glGetProgramiv, glGetProgramInfoLog);
     glDeleteProgram(program_);
     program_ = 0;
-    throw Error(vpath + " + " + fpath + ": shaders do not link: " + trimmed(log.data()));
+    throw Error(vpath + " + " + fpath + ": shaders do not link: " + log);
   }
 }
 
