@@ -22,6 +22,14 @@ enum class SolveMethod {
   Hierarchical,  // coarse Newton + sweeps per level, one cycle per iteration (Sect. 4.3)
 };
 
+// The solver to use when none is asked for (primo deform, the editor): global Newton up to
+// 20,000 faces, where it converges exactly in a few iterations; hierarchical above, where one
+// global iteration costs seconds and gigabytes (measurements in docs/engine.md).
+inline constexpr size_t kHierarchicalFromFaces = 20000;
+inline SolveMethod default_solve_method(size_t n_faces) {
+  return n_faces > kHierarchicalFromFaces ? SolveMethod::Hierarchical : SolveMethod::Global;
+}
+
 struct SolveOptions {
   SolveMethod method = SolveMethod::Global;
   int max_iterations = 100;
@@ -69,6 +77,8 @@ class Deformer {
   void set_force_offset(int force, const Vec3& target_offset);
 
   // Runs iterations from the current state until the stopping rule of the scenario format.
+  // Global solves carry their Gauss-Newton/exact-Newton mode over to the next call, so a drag
+  // solved one iteration per frame converges as fast as one long solve.
   // When nothing changed since a solve with the same method converged to the same or a
   // tighter tolerance, returns at once (0 iterations).
   SolveReport solve(const SolveOptions& options);
@@ -107,6 +117,7 @@ class Deformer {
   bool settled_ = false;
   SolveMethod settled_method_ = SolveMethod::Global;
   double settled_tolerance_ = 0.0;
+  bool exact_newton_ = false;  // the next global iteration takes an exact-Hessian step
 };
 
 }  // namespace primo

@@ -23,12 +23,6 @@ struct DeformArguments {
   std::string solver;
 };
 
-// Above this many faces one global Newton iteration on every prism costs seconds and
-// gigabytes (its factorization grows superlinearly), and the hierarchical solver is the
-// better choice; below it global Newton converges exactly in a few iterations
-// (docs/engine.md has the measurements).
-constexpr size_t kHierarchicalFromFaces = 20000;
-
 SolveMethod choose_method(const std::string& flag, SolverMethod from_scenario, size_t faces) {
   if (flag == "local") return SolveMethod::Local;
   if (flag == "global") return SolveMethod::Global;
@@ -39,7 +33,7 @@ SolveMethod choose_method(const std::string& flag, SolverMethod from_scenario, s
     case SolverMethod::Hierarchical: return SolveMethod::Hierarchical;
     case SolverMethod::Default: break;
   }
-  return faces > kHierarchicalFromFaces ? SolveMethod::Hierarchical : SolveMethod::Global;
+  return default_solve_method(faces);
 }
 
 const char* method_name(SolveMethod m) {

@@ -77,7 +77,8 @@ Deformer::Deformer(Deformer&& other) noexcept
       state_(std::move(other.state_)),
       settled_(other.settled_),
       settled_method_(other.settled_method_),
-      settled_tolerance_(other.settled_tolerance_) {
+      settled_tolerance_(other.settled_tolerance_),
+      exact_newton_(other.exact_newton_) {
   other.global_.reset();
   other.hierarchical_.reset();
 }
@@ -92,6 +93,7 @@ Deformer& Deformer::operator=(Deformer&& other) noexcept {
   settled_ = other.settled_;
   settled_method_ = other.settled_method_;
   settled_tolerance_ = other.settled_tolerance_;
+  exact_newton_ = other.exact_newton_;
   global_.reset();
   hierarchical_.reset();
   other.global_.reset();
@@ -119,6 +121,7 @@ BodyState Deformer::handle_state(int handle) const {
 
 void Deformer::reset() {
   settled_ = false;
+  exact_newton_ = false;
   state_.resize(system_.n_bodies());
   for (int b = 0; b < system_.n_bodies(); ++b)
     state_[b] = b < int(handles_.size()) ? handle_state(b)
@@ -159,7 +162,7 @@ SolveReport Deformer::solve(const SolveOptions& options) {
     return report;
   }
   report.stop_reason = "max_iterations";
-  bool exact = false;
+  bool& exact = exact_newton_;
 
   for (int it = 0; it < options.max_iterations; ++it) {
     if (e <= energy_floor) {
@@ -250,6 +253,7 @@ std::vector<RigidTransform> Deformer::face_motions() const {
 void Deformer::set_face_motions(const std::vector<RigidTransform>& motions) {
   if (int(motions.size()) != layer_.n_faces()) throw Error("one motion per face is needed");
   settled_ = false;
+  exact_newton_ = false;
   for (int b = int(handles_.size()); b < system_.n_bodies(); ++b) {
     const RigidSystem::Body& body = system_.bodies[b];
     const RigidTransform& m = motions[body.faces.front()];

@@ -38,8 +38,7 @@ SolveMethod interactive_solve_method(SolverMethod requested, int n_faces) {
     case SolverMethod::Hierarchical: return SolveMethod::Hierarchical;
     case SolverMethod::Default: break;
   }
-  constexpr int kHierarchicalFromFaces = 20000;  // as primo deform (deform_command.cpp)
-  return n_faces > kHierarchicalFromFaces ? SolveMethod::Hierarchical : SolveMethod::Global;
+  return default_solve_method(size_t(n_faces));
 }
 
 const char* phase_label(SolverPhase phase) {
