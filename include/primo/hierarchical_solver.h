@@ -2,16 +2,17 @@
 // Hierarchical shape matching (paper Sect. 4.3), as a multilevel subspace correction: every
 // coarse level moves whole clusters of fine prisms rigidly on top of the current fine state.
 //
-// One cycle: for the coarsest level down to the finest, restrict (the fine joints crossing
-// cluster borders and the springs, taken from the current fine state, become the level's
-// couplings), then optimize the clusters' corrections (global Newton matching on the coarsest
-// level, local sweeps on the others), then prolong (apply each cluster's correction to
-// its fine prisms). Finally sweep the fine level. Every step lowers the true energy, and
-// repeating cycles converges to the same minimum as the flat solvers; the coarse Newton step
-// carries the smooth, global part of a deformation at the cost of a small system. Restriction
-// is done once per level and cycle, so a coarse Newton iteration costs what the number of
-// clusters (and their borders) requires. The coarse sparsity pattern, hence the symbolic
-// factorization, is fixed for the life of the solver (one handle set).
+// One cycle: restrict every level from the next finer one in its current state (the fine
+// joints crossing cluster borders and the springs become the level's couplings; only the
+// first coarse level reads the fine bodies), optimize the coarsest level's corrections by
+// global Newton matching, then for each finer level apply (prolong) the corrections of the
+// level above and run local sweeps on it, and finally on the fine level. Every step lowers
+// the true energy, and repeating cycles converges to the same minimum as the flat solvers;
+// the coarse Newton step carries the smooth, global part of a deformation at the cost of a
+// small system. Restriction is done once per level and cycle, so a coarse Newton iteration
+// costs what the number of clusters (and their borders) requires. The coarse sparsity
+// pattern, hence the symbolic factorization, is fixed for the life of the solver (one
+// handle set).
 
 #include <memory>
 #include <vector>
@@ -53,8 +54,13 @@ class HierarchicalSolver {
 
  private:
   struct Level;
-  void restrict_level(Level& level, const std::vector<BodyState>& fine_state);
-  void prolong_level(const Level& level, std::vector<BodyState>& fine_state) const;
+  // Takes the level's joints and springs from the next finer level in its current state;
+  // `fine_state` orients the cluster metrics.
+  void restrict_level(Level& level, const RigidSystem& finer,
+                      const std::vector<BodyState>& finer_state,
+                      const std::vector<BodyState>& fine_state);
+  // Applies the level's corrections to the bodies of the next finer level.
+  void prolong_level(const Level& level, std::vector<BodyState>& finer_state) const;
 
   const RigidSystem& fine_;
   HierarchicalOptions options_;

@@ -23,11 +23,28 @@ void local_sweep(const RigidSystem& system, std::vector<BodyState>& state);
 // other's state), then the bodies on the cut are matched serially. It is a Gauss-Seidel
 // ordering, so its fixed points are those of `local_sweep`; it needs one join per sweep and
 // no spinning barrier, which matters on two cores shared with rendering.
+//
+// The plan also holds each body's joints packed for matching (indexed like
+// system.body_couplings): the state-independent parts of Horn's sums, contiguous so that a
+// sweep streams them instead of gathering whole couplings.
 struct SweepPlan {
   std::vector<int> half[2];
   std::vector<int> cut;
+  struct PackedJoint {
+    int other;         // the body on the other side
+    double weight;
+    Vec3 own_mean;     // weight * own side's mean (body coordinates)
+    Vec3 other_mean;   // weight * other side's mean (the other body's coordinates)
+    Mat3 cross;        // Coupling::cross for the own side
+  };
+  std::vector<PackedJoint> joints;
+  std::vector<double> joint_weight;  // per body: sum of its joints' weights
+  std::vector<Vec3> joint_source;    // per body: sum of own_mean
 };
 SweepPlan plan_sweep(const RigidSystem& system, bool parallel = true);
+// Re-reads the couplings' values after they changed (same couplings, same bodies); springs
+// are always read from the system.
+void refresh_sweep_plan(SweepPlan& plan, const RigidSystem& system);
 void planned_sweep(const RigidSystem& system, const SweepPlan& plan,
                    std::vector<BodyState>& state);
 

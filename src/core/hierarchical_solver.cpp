@@ -15,8 +15,9 @@ double seconds_since(Clock::time_point t) {
 struct HierarchicalSolver::Level {
   RigidSystem system;              // couplings/springs rewritten by every restriction
   std::vector<int> cluster_of;     // fine body -> cluster
-  std::vector<int> coupling_fine;  // level coupling -> fine coupling (same side order)
-  std::vector<double> fine_weight; // fine body weight in its cluster's centre
+  std::vector<int> parent_of;      // body of the next finer level (or fine body) -> cluster
+  std::vector<int> coupling_parent;  // level coupling -> same joint's coupling one level finer
+  std::vector<double> child_weight;  // faces of each body of the next finer level
   std::vector<int> representative; // cluster -> a fine body whose rotation orients the metric
   std::vector<Vec3> rest_metric_mean;
   std::vector<Mat3> rest_metric_centered, rest_metric_pinned;
@@ -29,12 +30,25 @@ HierarchicalSolver::HierarchicalSolver(const RigidSystem& fine, const Hierarchic
   const ClusterHierarchy hierarchy = build_cluster_hierarchy(fine, options.hierarchy);
   const int n_faces = int(fine.face_body.size());
 
-  // The fine couplings in joint order: level couplings come from the same joints, in the same
-  // order, so they can be matched by walking both lists.
+  // Level couplings come from the fine joints crossing cluster borders, in fine order; the
+  // borders of a coarser level are a subset of the finer level's, so each level coupling has
+  // a parent one level finer, found by walking both lists.
+  std::vector<int> finer_coupling_fine(fine.couplings.size());
+  for (size_t i = 0; i < finer_coupling_fine.size(); ++i) finer_coupling_fine[i] = int(i);
+  const RigidSystem* finer = &fine;
+  const std::vector<int>* finer_cluster_of = nullptr;
   for (int l = 0; l < hierarchy.coarse_levels(); ++l) {
     auto level = std::make_unique<Level>();
     level->cluster_of = hierarchy.cluster_of[l];
     const int n_clusters = hierarchy.cluster_count[l];
+    const int n_finer = finer->n_bodies();
+    level->parent_of.assign(n_finer, -1);
+    level->child_weight.assign(n_finer, 0.0);
+    for (int b = 0; b < fine.n_bodies(); ++b) {
+      const int child = finer_cluster_of ? (*finer_cluster_of)[b] : b;
+      level->parent_of[child] = level->cluster_of[b];
+      level->child_weight[child] += double(fine.bodies[b].faces.size());
+    }
     std::vector<int> face_cluster(n_faces);
     for (int f = 0; f < n_faces; ++f) face_cluster[f] = level->cluster_of[fine.face_body[f]];
     std::vector<BodyKind> kinds(n_clusters, BodyKind::Free);
@@ -46,9 +60,6 @@ HierarchicalSolver::HierarchicalSolver(const RigidSystem& fine, const Hierarchic
           fine.bodies[b].faces.size() > fine.bodies[level->representative[c]].faces.size())
         level->representative[c] = b;
     }
-    level->fine_weight.resize(fine.n_bodies());
-    for (int b = 0; b < fine.n_bodies(); ++b) level->fine_weight[b] = double(fine.bodies[b].faces.size());
-    // Couplings: fine couplings whose bodies are in different clusters.
     RigidSystem& sys = level->system;
     sys.face_body = face_cluster;
     sys.bodies.resize(n_clusters);
@@ -57,15 +68,17 @@ HierarchicalSolver::HierarchicalSolver(const RigidSystem& fine, const Hierarchic
       cluster.faces.insert(cluster.faces.end(), fine.bodies[b].faces.begin(), fine.bodies[b].faces.end());
     }
     for (int c = 0; c < n_clusters; ++c) sys.bodies[c].kind = kinds[c];
-    for (int ci = 0; ci < int(fine.couplings.size()); ++ci) {
-      const auto& fc = fine.couplings[ci];
+    std::vector<int> coupling_fine;
+    for (size_t k = 0; k < finer->couplings.size(); ++k) {
+      const auto& fc = fine.couplings[finer_coupling_fine[k]];
       const int a = level->cluster_of[fc.body[0]], b = level->cluster_of[fc.body[1]];
       if (a == b) continue;
       RigidSystem::Coupling c = fc;
       c.body[0] = a;
       c.body[1] = b;
       sys.couplings.push_back(c);
-      level->coupling_fine.push_back(ci);
+      level->coupling_parent.push_back(int(k));
+      coupling_fine.push_back(finer_coupling_fine[k]);
     }
     index_couplings(sys);
 
@@ -78,8 +91,9 @@ HierarchicalSolver::HierarchicalSolver(const RigidSystem& fine, const Hierarchic
     std::vector<Vec3> rest_center(n_clusters, Vec3::Zero());
     for (int b = 0; b < fine.n_bodies(); ++b) {
       const int c = level->cluster_of[b];
-      rest_center[c] += level->fine_weight[b] * fine.bodies[b].rest_center;
-      weight[c] += level->fine_weight[b];
+      const double w = double(fine.bodies[b].faces.size());
+      rest_center[c] += w * fine.bodies[b].rest_center;
+      weight[c] += w;
     }
     for (int c = 0; c < n_clusters; ++c) rest_center[c] /= weight[c];
     std::vector<double> metric_weight(n_clusters, 0.0);
@@ -103,7 +117,10 @@ HierarchicalSolver::HierarchicalSolver(const RigidSystem& fine, const Hierarchic
       sys.bodies[c].metric_weight = metric_weight[c];
     }
     level->plan = plan_sweep(sys);
+    finer_coupling_fine = std::move(coupling_fine);
     levels_.push_back(std::move(level));
+    finer = &levels_.back()->system;
+    finer_cluster_of = &levels_.back()->cluster_of;
   }
   fine_plan_ = plan_sweep(fine);
   if (!levels_.empty()) coarse_solver_ = std::make_unique<GlobalSolver>(levels_.back()->system);
@@ -115,14 +132,16 @@ int HierarchicalSolver::bodies(int level) const {
   return level == 0 ? fine_.n_bodies() : levels_[level - 1]->system.n_bodies();
 }
 
-void HierarchicalSolver::restrict_level(Level& level, const std::vector<BodyState>& fine_state) {
+void HierarchicalSolver::restrict_level(Level& level, const RigidSystem& finer,
+                                        const std::vector<BodyState>& finer_state,
+                                        const std::vector<BodyState>& fine_state) {
   RigidSystem& sys = level.system;
   const int n = sys.n_bodies();
   std::vector<Vec3> center(n, Vec3::Zero());
   std::vector<double> weight(n, 0.0);
-  for (int b = 0; b < fine_.n_bodies(); ++b) {
-    center[level.cluster_of[b]] += level.fine_weight[b] * fine_state[b].position;
-    weight[level.cluster_of[b]] += level.fine_weight[b];
+  for (int b = 0; b < finer.n_bodies(); ++b) {
+    center[level.parent_of[b]] += level.child_weight[b] * finer_state[b].position;
+    weight[level.parent_of[b]] += level.child_weight[b];
   }
   level.correction.resize(n);
   for (int c = 0; c < n; ++c) {
@@ -136,10 +155,10 @@ void HierarchicalSolver::restrict_level(Level& level, const std::vector<BodyStat
     level.correction[c] = {Mat3::Identity(), body.rest_center};
   }
   for (size_t k = 0; k < sys.couplings.size(); ++k) {
-    const RigidSystem::Coupling& fc = fine_.couplings[level.coupling_fine[k]];
+    const RigidSystem::Coupling& fc = finer.couplings[level.coupling_parent[k]];
     RigidSystem::Coupling& c = sys.couplings[k];
     for (int s = 0; s < 2; ++s) {
-      const BodyState& st = fine_state[fc.body[s]];
+      const BodyState& st = finer_state[fc.body[s]];
       c.local[s].mean = st.rotation * fc.local[s].mean + st.position - sys.bodies[c.body[s]].rest_center;
       c.local[s].du = st.rotation * fc.local[s].du;
       c.local[s].dv = st.rotation * fc.local[s].dv;
@@ -147,22 +166,23 @@ void HierarchicalSolver::restrict_level(Level& level, const std::vector<BodyStat
     }
     c.update_cross();
   }
-  sys.springs.resize(fine_.springs.size());
-  for (size_t k = 0; k < fine_.springs.size(); ++k) {
-    const RigidSystem::Spring& fs = fine_.springs[k];
-    const int c = level.cluster_of[fs.body];
-    sys.springs[k] = {c, world_point(fine_state[fs.body], fs.local) - sys.bodies[c].rest_center,
+  sys.springs.resize(finer.springs.size());
+  for (size_t k = 0; k < finer.springs.size(); ++k) {
+    const RigidSystem::Spring& fs = finer.springs[k];
+    const int c = level.parent_of[fs.body];
+    sys.springs[k] = {c, world_point(finer_state[fs.body], fs.local) - sys.bodies[c].rest_center,
                       fs.target, fs.weight};
   }
   index_springs(sys);
+  refresh_sweep_plan(level.plan, sys);
 }
 
-void HierarchicalSolver::prolong_level(const Level& level, std::vector<BodyState>& fine_state) const {
+void HierarchicalSolver::prolong_level(const Level& level, std::vector<BodyState>& finer_state) const {
   const RigidSystem& sys = level.system;
-  for (int b = 0; b < fine_.n_bodies(); ++b) {
-    const int c = level.cluster_of[b];
+  for (size_t b = 0; b < finer_state.size(); ++b) {
+    const int c = level.parent_of[b];
     const BodyState& corr = level.correction[c];
-    BodyState& s = fine_state[b];
+    BodyState& s = finer_state[b];
     s.position = corr.rotation * (s.position - sys.bodies[c].rest_center) + corr.position;
     s.rotation = corr.rotation * s.rotation;
   }
@@ -170,13 +190,21 @@ void HierarchicalSolver::prolong_level(const Level& level, std::vector<BodyState
 
 double HierarchicalSolver::cycle(std::vector<BodyState>& fine_state) {
   ++timings_.cycles;
-  for (int l = int(levels_.size()) - 1; l >= 0; --l) {
+  const int n_levels = int(levels_.size());
+  // Restrict level by level from the current state: level l's joints are taken from level
+  // l-1 (at rest in its own frame right after its restriction), so only the first coarse
+  // level reads all fine bodies.
+  auto t = Clock::now();
+  for (int l = 0; l < n_levels; ++l) {
+    const bool first = l == 0;
+    restrict_level(*levels_[l], first ? fine_ : levels_[l - 1]->system,
+                   first ? fine_state : levels_[l - 1]->correction, fine_state);
+  }
+  timings_.restrict_prolong += seconds_since(t);
+  for (int l = n_levels - 1; l >= 0; --l) {
     Level& level = *levels_[l];
-    auto t = Clock::now();
-    restrict_level(level, fine_state);
-    timings_.restrict_prolong += seconds_since(t);
     t = Clock::now();
-    if (l == int(levels_.size()) - 1) {
+    if (l == n_levels - 1) {
       for (int it = 0; it < options_.coarse_iterations; ++it) {
         const GlobalStep step = coarse_solver_->iterate(level.correction, coarse_exact_);
         coarse_exact_ = options_.exact_hessian_below > 0 && step.decreased &&
@@ -192,10 +220,10 @@ double HierarchicalSolver::cycle(std::vector<BodyState>& fine_state) {
       timings_.sweeps += seconds_since(t);
     }
     t = Clock::now();
-    prolong_level(level, fine_state);
+    prolong_level(level, l == 0 ? fine_state : levels_[l - 1]->correction);
     timings_.restrict_prolong += seconds_since(t);
   }
-  const auto t = Clock::now();
+  t = Clock::now();
   for (int k = 0; k < options_.sweeps_per_level; ++k) planned_sweep(fine_, fine_plan_, fine_state);
   timings_.sweeps += seconds_since(t);
   return fine_.energy(fine_state);

@@ -8,44 +8,18 @@
 
 namespace primo {
 
-BodyState local_match(const RigidSystem& system, const std::vector<BodyState>& state, int body) {
-  const RigidSystem::Body& b = system.bodies[body];
-  const BodyState& current = state[body];
-  if (b.kind == BodyKind::Fixed) return current;
+namespace {
 
-  // Weighted point pairs (source in body coordinates, target in world) and direction pairs,
-  // accumulated as raw moments so that one pass serves every constraint variant:
-  // cross = sum w s t^T over both kinds, the sums over point pairs only.
-  double point_weight = 0.0;
-  Vec3 source_sum = Vec3::Zero(), target_sum = Vec3::Zero();
-  Mat3 cross = Mat3::Zero();
-
-  for (int k = system.coupling_begin[body]; k < system.coupling_begin[body + 1]; ++k) {
-    const auto [ci, side] = system.body_couplings[k];
-    const RigidSystem::Coupling& c = system.couplings[ci];
-    const BodyState& os = state[c.body[1 - side]];
-    const double w = c.weight;
-    // With targets t = R_o other + p_o: sum w own t^T = cross[side] R_o^T + (w own.mean) p_o^T.
-    const Vec3 weighted_source = w * c.local[side].mean;
-    point_weight += w;
-    source_sum += weighted_source;
-    target_sum += w * world_point(os, c.local[1 - side].mean);
-    cross.noalias() += c.cross[side] * os.rotation.transpose();
-    cross.noalias() += weighted_source * os.position.transpose();
-  }
-  for (int k = system.spring_begin[body]; k < system.spring_begin[body + 1]; ++k) {
-    const RigidSystem::Spring& s = system.springs[system.body_springs[k]];
-    point_weight += s.weight;
-    source_sum += s.weight * s.local;
-    target_sum += s.weight * s.target;
-    cross.noalias() += s.weight * s.local * s.target.transpose();
-  }
+// The optimal state of a body from the weighted moments of its point pairs (source in body
+// coordinates, target in world; direction pairs enter `cross` only): cross = sum w s t^T over
+// both kinds, the sums over point pairs only.
+BodyState match_from_moments(BodyKind kind, const BodyState& current, double point_weight,
+                             const Vec3& source_sum, const Vec3& target_sum, const Mat3& cross) {
   if (point_weight <= 0.0) return current;
-
   BodyState next = current;
   const Vec3 source_mean = source_sum / point_weight;
   const Vec3 target_mean = target_sum / point_weight;
-  switch (b.kind) {
+  switch (kind) {
     case BodyKind::Free: {
       // Centred cross-covariance: sum w (s - s̄)(t - t̄)^T = sum w s t^T - W s̄ t̄^T.
       const Mat3 S = cross - point_weight * source_mean * target_mean.transpose();
@@ -68,6 +42,68 @@ BodyState local_match(const RigidSystem& system, const std::vector<BodyState>& s
   return next;
 }
 
+void add_springs(const RigidSystem& system, int body, double& point_weight, Vec3& source_sum,
+                 Vec3& target_sum, Mat3& cross) {
+  for (int k = system.spring_begin[body]; k < system.spring_begin[body + 1]; ++k) {
+    const RigidSystem::Spring& s = system.springs[system.body_springs[k]];
+    point_weight += s.weight;
+    source_sum += s.weight * s.local;
+    target_sum += s.weight * s.target;
+    cross.noalias() += s.weight * s.local * s.target.transpose();
+  }
+}
+
+// local_match through the plan's packed joints.
+BodyState planned_match(const RigidSystem& system, const SweepPlan& plan,
+                        const std::vector<BodyState>& state, int body) {
+  const BodyKind kind = system.bodies[body].kind;
+  const BodyState& current = state[body];
+  if (kind == BodyKind::Fixed) return current;
+  double point_weight = plan.joint_weight[body];
+  Vec3 source_sum = plan.joint_source[body];
+  Vec3 target_sum = Vec3::Zero();
+  Mat3 cross = Mat3::Zero();
+  const int end = system.coupling_begin[body + 1];
+  for (int k = system.coupling_begin[body]; k < end; ++k) {
+    const SweepPlan::PackedJoint& j = plan.joints[k];
+    const BodyState& os = state[j.other];
+    // Targets t = R_o other + p_o: sum w own t^T = cross R_o^T + (w own) p_o^T.
+    target_sum.noalias() += os.rotation * j.other_mean;
+    target_sum += j.weight * os.position;
+    cross.noalias() += j.cross * os.rotation.transpose();
+    cross.noalias() += j.own_mean * os.position.transpose();
+  }
+  add_springs(system, body, point_weight, source_sum, target_sum, cross);
+  return match_from_moments(kind, current, point_weight, source_sum, target_sum, cross);
+}
+
+}  // namespace
+
+BodyState local_match(const RigidSystem& system, const std::vector<BodyState>& state, int body) {
+  const RigidSystem::Body& b = system.bodies[body];
+  const BodyState& current = state[body];
+  if (b.kind == BodyKind::Fixed) return current;
+
+  double point_weight = 0.0;
+  Vec3 source_sum = Vec3::Zero(), target_sum = Vec3::Zero();
+  Mat3 cross = Mat3::Zero();
+  for (int k = system.coupling_begin[body]; k < system.coupling_begin[body + 1]; ++k) {
+    const auto [ci, side] = system.body_couplings[k];
+    const RigidSystem::Coupling& c = system.couplings[ci];
+    const BodyState& os = state[c.body[1 - side]];
+    const double w = c.weight;
+    // With targets t = R_o other + p_o: sum w own t^T = cross[side] R_o^T + (w own.mean) p_o^T.
+    const Vec3 weighted_source = w * c.local[side].mean;
+    point_weight += w;
+    source_sum += weighted_source;
+    target_sum += w * world_point(os, c.local[1 - side].mean);
+    cross.noalias() += c.cross[side] * os.rotation.transpose();
+    cross.noalias() += weighted_source * os.position.transpose();
+  }
+  add_springs(system, body, point_weight, source_sum, target_sum, cross);
+  return match_from_moments(b.kind, current, point_weight, source_sum, target_sum, cross);
+}
+
 void local_sweep(const RigidSystem& system, std::vector<BodyState>& state) {
   for (int b = 0; b < system.n_bodies(); ++b) state[b] = local_match(system, state, b);
 }
@@ -79,6 +115,7 @@ SweepPlan plan_sweep(const RigidSystem& system, bool parallel) {
   for (int b = 0; b < n; ++b)
     if (system.bodies[b].kind != BodyKind::Fixed) movable.push_back(b);
   // Below this size a thread costs more than it saves.
+  refresh_sweep_plan(plan, system);
   if (!parallel || movable.size() < 4000) {
     plan.half[0] = movable;
     return plan;
@@ -109,10 +146,31 @@ SweepPlan plan_sweep(const RigidSystem& system, bool parallel) {
   return plan;
 }
 
+void refresh_sweep_plan(SweepPlan& plan, const RigidSystem& system) {
+  const int n = system.n_bodies();
+  plan.joints.resize(system.body_couplings.size());
+  plan.joint_weight.assign(n, 0.0);
+  plan.joint_source.assign(n, Vec3::Zero());
+  for (int b = 0; b < n; ++b) {
+    for (int k = system.coupling_begin[b]; k < system.coupling_begin[b + 1]; ++k) {
+      const auto [ci, side] = system.body_couplings[k];
+      const RigidSystem::Coupling& c = system.couplings[ci];
+      SweepPlan::PackedJoint& j = plan.joints[k];
+      j.other = c.body[1 - side];
+      j.weight = c.weight;
+      j.own_mean = c.weight * c.local[side].mean;
+      j.other_mean = c.weight * c.local[1 - side].mean;
+      j.cross = c.cross[side];
+      plan.joint_weight[b] += c.weight;
+      plan.joint_source[b] += j.own_mean;
+    }
+  }
+}
+
 void planned_sweep(const RigidSystem& system, const SweepPlan& plan,
                    std::vector<BodyState>& state) {
   auto sweep = [&](const std::vector<int>& bodies) {
-    for (int b : bodies) state[b] = local_match(system, state, b);
+    for (int b : bodies) state[b] = planned_match(system, plan, state, b);
   };
   if (plan.half[1].empty()) {
     sweep(plan.half[0]);
