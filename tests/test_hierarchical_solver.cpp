@@ -25,12 +25,13 @@ struct PosedMesh {
   std::vector<Handle> handles;
 };
 
-// A 2,400-quad cylinder bent 90 degrees between its fixed bottom band and its top band.
-PosedMesh bent_cylinder() {
+// A cylinder (2,400 quads by default) bent 90 degrees between its fixed bottom band and its
+// top band.
+PosedMesh bent_cylinder(int around = 40, int rings = 60) {
   PosedMesh s;
   const double length = 2.0;
-  s.mesh = make_cylinder(0.25, length, 40, 60, FaceShape::Quads);
-  const double band = length / 60;
+  s.mesh = make_cylinder(0.25, length, around, rings, FaceShape::Quads);
+  const double band = length / rings;
   Handle bottom{"bottom", faces_where(s.mesh, [&](const Vec3& p) { return p.y() < band; }), Fix::All, {}};
   Handle top{"top", faces_where(s.mesh, [&](const Vec3& p) { return p.y() > length - band; }), Fix::All, {}};
   const double rho = length / (M_PI / 2);
@@ -242,4 +243,95 @@ TEST(HierarchicalSolver, AConvergedStateCostsNothing) {
   // A change of target starts it again.
   d.set_handle_transform(1, make_rigid_transform(Vec3(1.0, -0.6, 0), Vec3::UnitZ(), -80.0, Vec3(0, 2, 0)));
   EXPECT_GT(d.solve(hierarchical(5, 1e-6)).iterations, 0);
+}
+
+TEST(HierarchicalSolver, VCycleAndWCycleReachTheSameMinimum) {
+  // Both cycle shapes, with and without reusing the coarse factorization, are descent methods
+  // for the same energy: run to convergence they must agree with the flat solve.
+  const PosedMesh s = posed_spot();
+  Deformer flat(s.mesh, PrismParameters{}, s.handles);
+  SolveOptions g;
+  g.tolerance = 1e-10;
+  const SolveReport rg = flat.solve(g);
+  ASSERT_TRUE(rg.converged);
+  const double diagonal = bounding_box_diagonal(s.mesh);
+  for (int cycles : {1, 2}) {
+    for (int reuse : {0, 8}) {
+      SolveOptions o = hierarchical(1500, 1e-9, 150);
+      o.hierarchical.intermediate_cycles = cycles;
+      o.hierarchical.coarse_factor_reuse = reuse;
+      Deformer d(s.mesh, PrismParameters{}, s.handles);
+      const SolveReport r = d.solve(o);
+      const double error = max_distance(d.vertex_positions(), flat.vertex_positions()) / diagonal;
+      const GlobalSolverTimings& t = d.hierarchical_solver()->coarse_solver()->timings();
+      std::cout << "[ metric   ] spot, " << (cycles == 1 ? "V" : "W") << "-cycle, factor reused "
+                << reuse << "x: " << r.iterations << " cycles, " << t.factorizations
+                << " coarse factorizations, energy " << 100 * (r.energy / rg.energy - 1)
+                << "% off, vertices " << error << " of the diagonal\n";
+      ASSERT_GE(d.hierarchical_solver()->levels(), 3);
+      EXPECT_LT(std::abs(r.energy / rg.energy - 1), 1e-4);
+      EXPECT_LT(error, 1e-3);
+      if (reuse > 0) {
+        EXPECT_LT(t.factorizations * 2, r.iterations * cycles);
+      } else {
+        EXPECT_GE(t.factorizations, r.iterations);
+      }
+      double previous = r.initial_energy;
+      for (double e : r.energies) {
+        EXPECT_LE(e, previous * (1 + 1e-12));
+        previous = e;
+      }
+    }
+  }
+}
+
+TEST(GlobalSolver, ReusedFactorizationsStillDescendToTheMinimum) {
+  const PosedMesh s = bent_cylinder(16, 24);
+  Deformer reference(s.mesh, PrismParameters{}, s.handles);
+  SolveOptions g;
+  g.tolerance = 1e-12;
+  g.max_iterations = 200;
+  const SolveReport rg = reference.solve(g);
+  ASSERT_TRUE(rg.converged);
+
+  Deformer d(s.mesh, PrismParameters{}, s.handles);
+  std::vector<BodyState> state = d.body_states();
+  GlobalSolver solver(d.system());
+  double energy = d.system().energy(state);
+  int reused = 0, steps = 0;
+  for (; steps < 400 && energy > rg.energy * (1 + 1e-9); ++steps) {
+    // A fresh factor every fifth step, as the hierarchical solver does on its coarse level.
+    const GlobalStep step = solver.iterate(state, false, /*reuse_factorization=*/steps % 5 != 0);
+    ASSERT_TRUE(step.decreased) << "step " << steps;
+    EXPECT_LT(step.energy_after, energy);
+    energy = step.energy_after;
+    reused += step.reused_factorization;
+  }
+  std::cout << "[ metric   ] cylinder bend (384 quads), Gauss-Newton with reused factors: " << steps << " steps, "
+            << reused << " reused, " << solver.timings().factorizations << " factorizations\n";
+  EXPECT_LT(energy, rg.energy * (1 + 1e-9));
+  EXPECT_GT(reused, steps / 2);
+  EXPECT_EQ(solver.timings().factorizations + reused, steps);
+}
+
+TEST(HierarchicalSolver, AccelerationCutsCyclesAndKeepsTheMinimum) {
+  const PosedMesh s = bent_cylinder();
+  int cycles[2];
+  std::vector<Vec3> result[2];
+  for (int accelerated : {0, 1}) {
+    SolveOptions o = hierarchical(3000, 1e-9, 300);
+    o.hierarchical.acceleration_history = accelerated ? 5 : 0;
+    Deformer d(s.mesh, PrismParameters{}, s.handles);
+    const SolveReport r = d.solve(o);
+    EXPECT_TRUE(r.converged);
+    cycles[accelerated] = r.iterations;
+    result[accelerated] = d.vertex_positions();
+    if (accelerated) {
+      EXPECT_GT(d.hierarchical_solver()->timings().accepted_accelerations, 0);
+    }
+  }
+  std::cout << "[ metric   ] cylinder bend 90, 2400 quads: " << cycles[0] << " plain cycles, "
+            << cycles[1] << " accelerated\n";
+  EXPECT_LT(cycles[1] * 2, cycles[0]);
+  EXPECT_LT(max_distance(result[0], result[1]), 1e-4 * bounding_box_diagonal(s.mesh));
 }

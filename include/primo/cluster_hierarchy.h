@@ -18,7 +18,7 @@ namespace primo {
 
 struct HierarchyOptions {
   int cluster_size = 8;              // bodies per cluster on every level
-  int coarsest_max_bodies = 800;     // stop coarsening below this many bodies
+  int coarsest_max_bodies = 3000;    // stop coarsening below this many bodies (one level at least)
   int max_levels = 6;                // coarse levels at most
 };
 

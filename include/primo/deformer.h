@@ -113,6 +113,7 @@ class Deformer {
   std::vector<BodyState> state_;
   std::unique_ptr<GlobalSolver> global_;  // made on first use: symbolic analysis once
   std::unique_ptr<HierarchicalSolver> hierarchical_;  // made on first use
+  void problem_changed();  // targets or state were set from outside
   // The last solve converged with this method and tolerance, and nothing changed since.
   bool settled_ = false;
   SolveMethod settled_method_ = SolveMethod::Global;

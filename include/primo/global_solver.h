@@ -28,6 +28,7 @@ struct GlobalStep {
   double step_scale = 0.0;  // lambda that was accepted (0 when no step lowered the energy)
   bool exact_hessian = false;
   bool decreased = false;
+  bool reused_factorization = false;  // the step came from an earlier iteration's factor
 };
 
 // Accumulated wall time per phase since the solver was made (or timings were reset).
@@ -61,8 +62,11 @@ class GlobalSolver {
 
   // One iteration from `state` (updated in place when the energy decreased). With
   // `exact_hessian` the second-order rotation terms are added when they keep the system
-  // positive definite.
-  GlobalStep iterate(std::vector<BodyState>& state, bool exact_hessian);
+  // positive definite. With `reuse_factorization` the factor of the previous iteration is
+  // tried first (a modified Newton step, for systems whose matrix changes slowly between
+  // calls); a fresh one is made when it has none or its step does not lower the energy.
+  GlobalStep iterate(std::vector<BodyState>& state, bool exact_hessian,
+                     bool reuse_factorization = false);
 
   int n_dofs() const;
   const GlobalSolverTimings& timings() const;

@@ -17,6 +17,7 @@
 #include <memory>
 #include <vector>
 
+#include "primo/anderson_acceleration.h"
 #include "primo/cluster_hierarchy.h"
 #include "primo/global_solver.h"
 #include "primo/local_solver.h"
@@ -29,14 +30,26 @@ struct HierarchicalOptions {
   int sweeps_per_level = 2;      // local sweeps on the fine level (the paper uses 2)
   int intermediate_sweeps = 8;   // local sweeps on each level between fine and coarsest (cheap)
   int coarse_iterations = 1;     // global Newton iterations on the coarsest level per cycle
+  // Each intermediate level is improved this many times per visit (restrict the levels above,
+  // solve them, prolong, sweep): 1 is a V-cycle, 2 a W-cycle.
+  int intermediate_cycles = 1;
+  // Coarse Newton steps may reuse one numeric factorization this many times (modified
+  // Newton; the coarse matrix changes little between cycles). 0: factorize every step.
+  int coarse_factor_reuse = 8;
+  double intermediate_relaxation = 1.8;  // over-relaxation of intermediate sweeps (1: none)
+  // Cycles are accelerated by Anderson acceleration over this many past cycles (0: plain
+  // cycles). Memory: 2 x (history + 1) x 12 doubles per fine body.
+  int acceleration_history = 5;
   double exact_hessian_below = 1e-1;  // as SolveOptions::exact_hessian_below, for the coarsest level
 };
 
 struct HierarchicalTimings {
   double restrict_prolong = 0.0;
+  double acceleration = 0.0;  // Anderson proposals and their energy
   double coarse = 0.0;
   double sweeps = 0.0;
   int cycles = 0;
+  int accepted_accelerations = 0;
 };
 
 class HierarchicalSolver {
@@ -44,8 +57,12 @@ class HierarchicalSolver {
   HierarchicalSolver(const RigidSystem& fine, const HierarchicalOptions& options = {});
   ~HierarchicalSolver();
 
-  // One cycle from `fine_state` (updated in place). Returns the fine energy after it.
+  // One cycle from `fine_state` (updated in place). Returns the fine energy after it. With
+  // acceleration, the cycle's result is replaced by the accelerated proposal when that has
+  // lower energy (otherwise the history is restarted).
   double cycle(std::vector<BodyState>& fine_state);
+  // Forget the acceleration history (the targets changed).
+  void restart_acceleration() { acceleration_.reset(); }
 
   int levels() const { return int(levels_.size()) + 1; }  // including the fine level
   int bodies(int level) const;  // level 0 = fine
@@ -54,11 +71,14 @@ class HierarchicalSolver {
 
  private:
   struct Level;
-  // Takes the level's joints and springs from the next finer level in its current state;
-  // `fine_state` orients the cluster metrics.
+  // Takes the level's joints and springs from the next finer level in its current state
+  // (`finer_orientation`: that level's own orientations, null for the fine level).
   void restrict_level(Level& level, const RigidSystem& finer,
                       const std::vector<BodyState>& finer_state,
-                      const std::vector<BodyState>& fine_state);
+                      const std::vector<Mat3>* finer_orientation);
+  double plain_cycle(std::vector<BodyState>& fine_state);
+  // Improves level l's corrections (restricted already) with the levels above it and sweeps.
+  void solve_level(int l);
   // Applies the level's corrections to the bodies of the next finer level.
   void prolong_level(const Level& level, std::vector<BodyState>& finer_state) const;
 
@@ -68,6 +88,9 @@ class HierarchicalSolver {
   std::unique_ptr<GlobalSolver> coarse_solver_;
   SweepPlan fine_plan_;
   bool coarse_exact_ = false;
+  int coarse_steps_on_factor_ = 0;
+  AndersonAcceleration acceleration_;
+  std::vector<BodyState> cycle_input_;
   HierarchicalTimings timings_;
 };
 

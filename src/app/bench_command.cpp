@@ -1060,22 +1060,32 @@ int run_bench_drag(const BenchDragArguments& args) {
                      args.hierarchical.hierarchy.cluster_size != defaults.hierarchy.cluster_size ||
                      args.hierarchical.sweeps_per_level != defaults.sweeps_per_level ||
                      args.hierarchical.intermediate_sweeps != defaults.intermediate_sweeps ||
-                     args.hierarchical.coarse_iterations != defaults.coarse_iterations;
+                     args.hierarchical.coarse_iterations != defaults.coarse_iterations ||
+                     args.hierarchical.intermediate_cycles != defaults.intermediate_cycles ||
+                     args.hierarchical.coarse_factor_reuse != defaults.coarse_factor_reuse ||
+                     args.hierarchical.intermediate_relaxation != defaults.intermediate_relaxation ||
+                     args.hierarchical.acceleration_history != defaults.acceleration_history;
   const nlohmann::json settings = {
       {"cluster_size", args.hierarchical.hierarchy.cluster_size},
       {"coarsest_max_bodies", args.hierarchical.hierarchy.coarsest_max_bodies},
       {"fine_sweeps", args.hierarchical.sweeps_per_level},
       {"intermediate_sweeps", args.hierarchical.intermediate_sweeps},
       {"coarse_iterations", args.hierarchical.coarse_iterations},
+      {"intermediate_cycles", args.hierarchical.intermediate_cycles},
+      {"coarse_factor_reuse", args.hierarchical.coarse_factor_reuse},
+      {"intermediate_relaxation", args.hierarchical.intermediate_relaxation},
+      {"acceleration_history", args.hierarchical.acceleration_history},
       {"core_defaults", !tuned}};
   if (method == SolveMethod::Hierarchical) {
     out["hierarchical_settings"] = settings;
     std::printf("           hierarchy: clusters of %d, coarsest <= %d bodies, %d fine sweeps, %d "
-                "intermediate sweeps, %d coarse Newton iterations per cycle%s\n",
+                "intermediate sweeps x %d visits, %d coarse Newton iterations per cycle, a "
+                "coarse factorization reused up to %d times%s\n",
                 args.hierarchical.hierarchy.cluster_size,
                 args.hierarchical.hierarchy.coarsest_max_bodies,
                 args.hierarchical.sweeps_per_level, args.hierarchical.intermediate_sweeps,
-                args.hierarchical.coarse_iterations, tuned ? " (NOT the core's defaults)" : "");
+                args.hierarchical.intermediate_cycles, args.hierarchical.coarse_iterations,
+                args.hierarchical.coarse_factor_reuse, tuned ? " (NOT the core's defaults)" : "");
   }
   std::printf("\n");
   std::fflush(stdout);
@@ -1296,6 +1306,22 @@ Command register_bench(CLI::App& app) {
   drag->add_option("--coarse-iterations", h.coarse_iterations,
                    "Newton iterations on the coarsest level per cycle")
       ->check(CLI::Range(0, 1000))
+      ->group(group);
+  drag->add_option("--intermediate-cycles", h.intermediate_cycles,
+                   "Visits of the coarser levels per intermediate level (1: V-cycle, 2: W-cycle)")
+      ->check(CLI::Range(1, 10))
+      ->group(group);
+  drag->add_option("--intermediate-relaxation", h.intermediate_relaxation,
+                   "Over-relaxation factor of intermediate sweeps (1: plain Gauss-Seidel)")
+      ->check(CLI::Range(1.0, 1.99))
+      ->group(group);
+  drag->add_option("--acceleration-history", h.acceleration_history,
+                   "Anderson acceleration over this many cycles within one solve (0: off)")
+      ->check(CLI::Range(0, 50))
+      ->group(group);
+  drag->add_option("--coarse-factor-reuse", h.coarse_factor_reuse,
+                   "Coarse Newton steps per numeric factorization, beyond the first")
+      ->check(CLI::Range(0, 100000))
       ->group(group);
 
   return {bench, [engine, engine_args, drag, drag_args]() -> int {

@@ -79,7 +79,10 @@ ClusterHierarchy build_cluster_hierarchy(const RigidSystem& fine, const Hierarch
   std::vector<bool> locked(n_fine);
   for (int b = 0; b < n_fine; ++b) locked[b] = fine.bodies[b].kind != BodyKind::Free;
 
-  while (h.coarse_levels() < options.max_levels && n_nodes > options.coarsest_max_bodies) {
+  // At least one coarse level, even when the fine level is small already: without one the
+  // solver would be plain local sweeps.
+  while (h.coarse_levels() < options.max_levels &&
+         (h.coarse_levels() == 0 || n_nodes > options.coarsest_max_bodies)) {
     std::vector<Vec3> position(n_nodes, Vec3::Zero());
     std::vector<double> weight(n_nodes, 0.0);
     for (int b = 0; b < n_fine; ++b) {

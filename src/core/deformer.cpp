@@ -66,6 +66,12 @@ Deformer::Deformer(const Mesh& mesh, const PrismParameters& params, std::vector<
 }
 
 Deformer::~Deformer() = default;
+
+void Deformer::problem_changed() {
+  settled_ = false;
+  // Accelerated cycles combine iterates of one fixed problem.
+  if (hierarchical_) hierarchical_->restart_acceleration();
+}
 // The global solver refers to system_, whose address changes with a move: drop it, it is
 // rebuilt (with its symbolic analysis) on the next global iteration.
 Deformer::Deformer(Deformer&& other) noexcept
@@ -120,7 +126,7 @@ BodyState Deformer::handle_state(int handle) const {
 }
 
 void Deformer::reset() {
-  settled_ = false;
+  problem_changed();
   exact_newton_ = false;
   state_.resize(system_.n_bodies());
   for (int b = 0; b < system_.n_bodies(); ++b)
@@ -131,7 +137,7 @@ void Deformer::reset() {
 void Deformer::set_handle_transform(int handle, const RigidTransform& transform) {
   if (handle < 0 || handle >= int(handles_.size())) throw Error("no such handle");
   handles_[handle].transform = transform;
-  settled_ = false;
+  problem_changed();
   const BodyState target = handle_state(handle);
   BodyState& s = state_[handle];
   switch (handles_[handle].fix) {
@@ -144,7 +150,7 @@ void Deformer::set_handle_transform(int handle, const RigidTransform& transform)
 void Deformer::set_force_offset(int force, const Vec3& target_offset) {
   if (force < 0 || force >= int(forces_.size())) throw Error("no such force");
   forces_[force].target_offset = target_offset;
-  settled_ = false;
+  problem_changed();
   rebuild_springs();
 }
 
@@ -252,7 +258,7 @@ std::vector<RigidTransform> Deformer::face_motions() const {
 
 void Deformer::set_face_motions(const std::vector<RigidTransform>& motions) {
   if (int(motions.size()) != layer_.n_faces()) throw Error("one motion per face is needed");
-  settled_ = false;
+  problem_changed();
   exact_newton_ = false;
   for (int b = int(handles_.size()); b < system_.n_bodies(); ++b) {
     const RigidSystem::Body& body = system_.bodies[b];

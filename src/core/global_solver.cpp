@@ -115,6 +115,10 @@ struct GlobalSolver::Impl {
   // Levenberg-Marquardt damping of exact-Hessian steps, relative to the system's scale, kept
   // across iterations: raised while the Hessian is indefinite, lowered after full steps.
   double exact_damping = 0.0;
+  // The numeric factor held by the CHOLMOD objects, if any, and whether it has the
+  // second-order terms (its steps then go through the exponential map).
+  bool has_factor = false;
+  bool factor_exact = false;
   GlobalSolverTimings timings;
   Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> supernodal;
   Eigen::CholmodSimplicialLLT<SparseMatrix, Eigen::Lower> simplicial;
@@ -291,6 +295,8 @@ bool GlobalSolver::Impl::factorize(double damping, bool with_second_order,
   timings.factorization += seconds_since(start);
   ++timings.factorizations;
   if (!ok) ++timings.failed_factorizations;
+  has_factor = ok;
+  factor_exact = with_second_order;
   return ok;
 }
 
@@ -353,7 +359,8 @@ int GlobalSolver::n_dofs() const { return impl_->n; }
 const GlobalSolverTimings& GlobalSolver::timings() const { return impl_->timings; }
 void GlobalSolver::reset_timings() { impl_->timings = {}; }
 
-GlobalStep GlobalSolver::iterate(std::vector<BodyState>& state, bool exact_hessian) {
+GlobalStep GlobalSolver::iterate(std::vector<BodyState>& state, bool exact_hessian,
+                                bool reuse_factorization) {
   Impl& m = *impl_;
   GlobalStep step;
   step.energy_before = m.sys.energy(state);
@@ -381,6 +388,42 @@ GlobalStep GlobalSolver::iterate(std::vector<BodyState>& state, bool exact_hessi
 
   const double scale = trace_k > 0 ? std::max(trace_h, 1e-300) / trace_k : 0.0;
 
+  // Solve with the current factor and halve the step until the energy drops.
+  auto search = [&](bool exact, int max_halvings) {
+    auto solve_start = Clock::now();
+    const Eigen::VectorXd delta = m.solve(rhs);
+    m.timings.solve += seconds_since(solve_start);
+    if (!delta.allFinite()) return false;
+    const auto search_start = Clock::now();
+    struct AddTime {
+      double& total;
+      Clock::time_point start;
+      ~AddTime() { total += seconds_since(start); }
+    } add_time{m.timings.line_search, search_start};
+    double lambda = 1.0;
+    for (int halving = 0; halving <= max_halvings; ++halving, lambda *= 0.5) {
+      std::vector<BodyState> trial = m.apply(state, delta, lambda, exact);
+      const double e = m.sys.energy(trial);
+      ++m.timings.energy_evaluations;
+      if (e < step.energy_before) {
+        state.swap(trial);
+        step.energy_after = e;
+        step.step_scale = lambda;
+        step.exact_hessian = exact;
+        step.decreased = true;
+        return true;
+      }
+    }
+    return false;
+  };
+
+  // A factor from an earlier iteration still gives a descent direction (the matrix it came
+  // from is positive definite); a few halvings at most before paying for a fresh one.
+  if (reuse_factorization && m.has_factor && search(m.factor_exact, 3)) {
+    step.reused_factorization = true;
+    return step;
+  }
+
   // One step of the given kind: factorize, solve, halve the step until the energy drops.
   auto try_step = [&](bool exact) {
     bool factored = false;
@@ -400,36 +443,14 @@ GlobalStep GlobalSolver::iterate(std::vector<BodyState>& state, bool exact_hessi
       }
       if (!factored) return false;
     }
-    auto solve_start = Clock::now();
-    const Eigen::VectorXd delta = m.solve(rhs);
-    m.timings.solve += seconds_since(solve_start);
-    if (!delta.allFinite()) return false;
-    const auto search_start = Clock::now();
-    struct AddTime {
-      double& total;
-      Clock::time_point start;
-      ~AddTime() { total += seconds_since(start); }
-    } add_time{m.timings.line_search, search_start};
-    double lambda = 1.0;
-    for (int halving = 0; halving <= 40; ++halving, lambda *= 0.5) {
-      std::vector<BodyState> trial = m.apply(state, delta, lambda, exact);
-      const double e = m.sys.energy(trial);
-      ++m.timings.energy_evaluations;
-      if (e < step.energy_before) {
-        state.swap(trial);
-        step.energy_after = e;
-        step.step_scale = lambda;
-        step.exact_hessian = exact;
-        step.decreased = true;
-        if (exact) {
-          if (lambda == 1.0) m.exact_damping = m.exact_damping < 1e-7 ? 0.0 : m.exact_damping / 10;
-          else m.exact_damping = std::max(m.exact_damping * 10, 1e-4);
-        }
-        return true;
-      }
+    const bool ok = search(exact, 40);
+    if (exact) {
+      if (ok && step.step_scale == 1.0)
+        m.exact_damping = m.exact_damping < 1e-7 ? 0.0 : m.exact_damping / 10;
+      else
+        m.exact_damping = std::max(m.exact_damping * 10, 1e-4);
     }
-    if (exact) m.exact_damping = std::max(m.exact_damping * 10, 1e-4);
-    return false;
+    return ok;
   };
   if (exact_hessian && try_step(true)) return step;
   try_step(false);

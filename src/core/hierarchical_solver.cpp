@@ -18,7 +18,11 @@ struct HierarchicalSolver::Level {
   std::vector<int> parent_of;      // body of the next finer level (or fine body) -> cluster
   std::vector<int> coupling_parent;  // level coupling -> same joint's coupling one level finer
   std::vector<double> child_weight;  // faces of each body of the next finer level
-  std::vector<int> representative; // cluster -> a fine body whose rotation orients the metric
+  // The metric of a cluster is its rest metric turned by the rotation of a representative
+  // fine body, found through one body of the next finer level that contains it.
+  std::vector<int> representative;        // cluster -> fine body
+  std::vector<int> representative_child;  // cluster -> body of the next finer level
+  std::vector<Mat3> orientation;          // cluster -> representative's rotation at restriction
   std::vector<Vec3> rest_metric_mean;
   std::vector<Mat3> rest_metric_centered, rest_metric_pinned;
   std::vector<BodyState> correction;
@@ -26,7 +30,7 @@ struct HierarchicalSolver::Level {
 };
 
 HierarchicalSolver::HierarchicalSolver(const RigidSystem& fine, const HierarchicalOptions& options)
-    : fine_(fine), options_(options) {
+    : fine_(fine), options_(options), acceleration_(options.acceleration_history) {
   const ClusterHierarchy hierarchy = build_cluster_hierarchy(fine, options.hierarchy);
   const int n_faces = int(fine.face_body.size());
 
@@ -60,6 +64,12 @@ HierarchicalSolver::HierarchicalSolver(const RigidSystem& fine, const Hierarchic
           fine.bodies[b].faces.size() > fine.bodies[level->representative[c]].faces.size())
         level->representative[c] = b;
     }
+    level->representative_child.resize(n_clusters);
+    for (int c = 0; c < n_clusters; ++c) {
+      const int rep = level->representative[c];
+      level->representative_child[c] = finer_cluster_of ? (*finer_cluster_of)[rep] : rep;
+    }
+    level->orientation.assign(n_clusters, Mat3::Identity());
     RigidSystem& sys = level->system;
     sys.face_body = face_cluster;
     sys.bodies.resize(n_clusters);
@@ -134,7 +144,7 @@ int HierarchicalSolver::bodies(int level) const {
 
 void HierarchicalSolver::restrict_level(Level& level, const RigidSystem& finer,
                                         const std::vector<BodyState>& finer_state,
-                                        const std::vector<BodyState>& fine_state) {
+                                        const std::vector<Mat3>* finer_orientation) {
   RigidSystem& sys = level.system;
   const int n = sys.n_bodies();
   std::vector<Vec3> center(n, Vec3::Zero());
@@ -148,7 +158,11 @@ void HierarchicalSolver::restrict_level(Level& level, const RigidSystem& finer,
     RigidSystem::Body& body = sys.bodies[c];
     body.rest_center = center[c] / weight[c];
     // The cluster's prisms have moved; orient its rest metric by one of them.
-    const Mat3& R = fine_state[level.representative[c]].rotation;
+    const int child = level.representative_child[c];
+    level.orientation[c] = finer_orientation
+                               ? Mat3(finer_state[child].rotation * (*finer_orientation)[child])
+                               : finer_state[child].rotation;
+    const Mat3& R = level.orientation[c];
     body.metric_mean = R * level.rest_metric_mean[c];
     body.metric_centered = R * level.rest_metric_centered[c] * R.transpose();
     body.metric_pinned = R * level.rest_metric_pinned[c] * R.transpose();
@@ -188,42 +202,72 @@ void HierarchicalSolver::prolong_level(const Level& level, std::vector<BodyState
   }
 }
 
-double HierarchicalSolver::cycle(std::vector<BodyState>& fine_state) {
-  ++timings_.cycles;
-  const int n_levels = int(levels_.size());
-  // Restrict level by level from the current state: level l's joints are taken from level
-  // l-1 (at rest in its own frame right after its restriction), so only the first coarse
-  // level reads all fine bodies.
+void HierarchicalSolver::solve_level(int l) {
+  Level& level = *levels_[l];
   auto t = Clock::now();
-  for (int l = 0; l < n_levels; ++l) {
-    const bool first = l == 0;
-    restrict_level(*levels_[l], first ? fine_ : levels_[l - 1]->system,
-                   first ? fine_state : levels_[l - 1]->correction, fine_state);
-  }
-  timings_.restrict_prolong += seconds_since(t);
-  for (int l = n_levels - 1; l >= 0; --l) {
-    Level& level = *levels_[l];
-    t = Clock::now();
-    if (l == n_levels - 1) {
-      for (int it = 0; it < options_.coarse_iterations; ++it) {
-        const GlobalStep step = coarse_solver_->iterate(level.correction, coarse_exact_);
-        coarse_exact_ = options_.exact_hessian_below > 0 && step.decreased &&
-                        step.step_scale == 1.0 &&
-                        step.energy_before - step.energy_after <
-                            options_.exact_hessian_below * step.energy_before;
-        if (!step.decreased) break;
-      }
-      timings_.coarse += seconds_since(t);
-    } else {
-      for (int k = 0; k < options_.intermediate_sweeps; ++k)
-        planned_sweep(level.system, level.plan, level.correction);
-      timings_.sweeps += seconds_since(t);
+  if (l + 1 == int(levels_.size())) {
+    for (int it = 0; it < options_.coarse_iterations; ++it) {
+      const bool reuse = coarse_steps_on_factor_ < options_.coarse_factor_reuse;
+      const GlobalStep step = coarse_solver_->iterate(level.correction, coarse_exact_, reuse);
+      coarse_steps_on_factor_ = step.reused_factorization ? coarse_steps_on_factor_ + 1 : 0;
+      coarse_exact_ = options_.exact_hessian_below > 0 && step.decreased &&
+                      step.step_scale == 1.0 &&
+                      step.energy_before - step.energy_after <
+                          options_.exact_hessian_below * step.energy_before;
+      if (!step.decreased) break;
     }
+    timings_.coarse += seconds_since(t);
+    return;
+  }
+  Level& coarser = *levels_[l + 1];
+  for (int r = 0; r < options_.intermediate_cycles; ++r) {
     t = Clock::now();
-    prolong_level(level, l == 0 ? fine_state : levels_[l - 1]->correction);
+    restrict_level(coarser, level.system, level.correction, &level.orientation);
+    timings_.restrict_prolong += seconds_since(t);
+    solve_level(l + 1);
+    t = Clock::now();
+    prolong_level(coarser, level.correction);
+    timings_.restrict_prolong += seconds_since(t);
+    t = Clock::now();
+    for (int k = 0; k < options_.intermediate_sweeps; ++k)
+      planned_sweep(level.system, level.plan, level.correction, options_.intermediate_relaxation);
+    timings_.sweeps += seconds_since(t);
+  }
+}
+
+double HierarchicalSolver::cycle(std::vector<BodyState>& fine_state) {
+  if (acceleration_.history() > 0) cycle_input_ = fine_state;
+  double energy = plain_cycle(fine_state);
+  if (acceleration_.history() > 0) {
+    const auto t = Clock::now();
+    std::vector<BodyState> proposal = acceleration_.propose(cycle_input_, fine_state);
+    if (acceleration_.stored() > 0) {
+      const double proposed = fine_.energy(proposal);
+      if (proposed < energy) {
+        fine_state.swap(proposal);
+        energy = proposed;
+        ++timings_.accepted_accelerations;
+      } else {
+        acceleration_.reset();
+      }
+    }
+    timings_.acceleration += seconds_since(t);
+  }
+  return energy;
+}
+
+double HierarchicalSolver::plain_cycle(std::vector<BodyState>& fine_state) {
+  ++timings_.cycles;
+  if (!levels_.empty()) {
+    auto t = Clock::now();
+    restrict_level(*levels_[0], fine_, fine_state, nullptr);
+    timings_.restrict_prolong += seconds_since(t);
+    solve_level(0);
+    t = Clock::now();
+    prolong_level(*levels_[0], fine_state);
     timings_.restrict_prolong += seconds_since(t);
   }
-  t = Clock::now();
+  const auto t = Clock::now();
   for (int k = 0; k < options_.sweeps_per_level; ++k) planned_sweep(fine_, fine_plan_, fine_state);
   timings_.sweeps += seconds_since(t);
   return fine_.energy(fine_state);

@@ -2,6 +2,8 @@
 
 #include "primo/horn.h"
 
+#include <Eigen/Geometry>
+
 #include <algorithm>
 #include <limits>
 #include <thread>
@@ -53,9 +55,34 @@ void add_springs(const RigidSystem& system, int body, double& point_weight, Vec3
   }
 }
 
-// local_match through the plan's packed joints.
+// The change of a body's joint and spring energy from `from` to `to`, from the moments of
+// its point pairs: E(R, p) = const + W |p|^2 + 2 p.(R source_sum) - 2 p.target_sum
+// - 2 trace(R cross).
+double energy_change(const BodyState& from, const BodyState& to, double point_weight,
+                     const Vec3& source_sum, const Vec3& target_sum, const Mat3& cross) {
+  auto variable = [&](const BodyState& s) {
+    return point_weight * s.position.squaredNorm() +
+           2.0 * s.position.dot(s.rotation * source_sum - target_sum) -
+           2.0 * (s.rotation.cwiseProduct(cross.transpose())).sum();
+  };
+  return variable(to) - variable(from);
+}
+
+// `current` moved `relaxation` times as far as towards `matched` (rotation along the
+// geodesic).
+BodyState relaxed(const BodyState& current, const BodyState& matched, double relaxation) {
+  const Eigen::AngleAxisd turn(Mat3(matched.rotation * current.rotation.transpose()));
+  BodyState next;
+  next.rotation = Eigen::AngleAxisd(relaxation * turn.angle(), turn.axis()).toRotationMatrix() *
+                  current.rotation;
+  next.position = current.position + relaxation * (matched.position - current.position);
+  return next;
+}
+
+// local_match through the plan's packed joints, over-relaxed when `relaxation` > 1 and that
+// still lowers the body's energy.
 BodyState planned_match(const RigidSystem& system, const SweepPlan& plan,
-                        const std::vector<BodyState>& state, int body) {
+                        const std::vector<BodyState>& state, int body, double relaxation) {
   const BodyKind kind = system.bodies[body].kind;
   const BodyState& current = state[body];
   if (kind == BodyKind::Fixed) return current;
@@ -74,7 +101,12 @@ BodyState planned_match(const RigidSystem& system, const SweepPlan& plan,
     cross.noalias() += j.own_mean * os.position.transpose();
   }
   add_springs(system, body, point_weight, source_sum, target_sum, cross);
-  return match_from_moments(kind, current, point_weight, source_sum, target_sum, cross);
+  const BodyState matched =
+      match_from_moments(kind, current, point_weight, source_sum, target_sum, cross);
+  if (relaxation == 1.0) return matched;
+  const BodyState over = relaxed(current, matched, relaxation);
+  return energy_change(current, over, point_weight, source_sum, target_sum, cross) < 0.0 ? over
+                                                                                         : matched;
 }
 
 }  // namespace
@@ -168,9 +200,9 @@ void refresh_sweep_plan(SweepPlan& plan, const RigidSystem& system) {
 }
 
 void planned_sweep(const RigidSystem& system, const SweepPlan& plan,
-                   std::vector<BodyState>& state) {
+                   std::vector<BodyState>& state, double relaxation) {
   auto sweep = [&](const std::vector<int>& bodies) {
-    for (int b : bodies) state[b] = planned_match(system, plan, state, b);
+    for (int b : bodies) state[b] = planned_match(system, plan, state, b, relaxation);
   };
   if (plan.half[1].empty()) {
     sweep(plan.half[0]);

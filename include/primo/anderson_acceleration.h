@@ -1,0 +1,37 @@
+#pragma once
+// Anderson acceleration [Walker and Ni 2011; Peng et al. 2018, "Anderson acceleration for
+// geometry optimization and physics simulation"] of a fixed-point iteration on rigid body
+// states: from the last few iterates x_i and their images G(x_i), it proposes the combination
+// of images whose residuals G(x) - x cancel best. Rigid motions are combined in their
+// 12-number embedding (rotation matrix and position) and the rotations are projected back to
+// the closest rotation. The caller keeps the proposal only if it lowers the energy (and then
+// starts afresh on refusal), so the accelerated iteration stays a descent method.
+
+#include <vector>
+
+#include "primo/rigid_system.h"
+
+namespace primo {
+
+class AndersonAcceleration {
+ public:
+  explicit AndersonAcceleration(int history) : history_(history) {}
+
+  // `input` was mapped to `image` by one step of the iteration. Returns the accelerated next
+  // state, or `image` itself while there is no history yet. Bodies whose state never changed
+  // in the history (fixed handles) are returned exactly as in `image`.
+  std::vector<BodyState> propose(const std::vector<BodyState>& input,
+                                 const std::vector<BodyState>& image);
+  // Forget the history (the proposal was refused, or the problem changed).
+  void reset();
+
+  int history() const { return history_; }
+  int stored() const { return int(delta_residual_.size()); }
+
+ private:
+  int history_;
+  std::vector<double> last_residual_, last_image_;
+  std::vector<std::vector<double>> delta_residual_, delta_image_;  // oldest first
+};
+
+}  // namespace primo
