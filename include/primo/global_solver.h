@@ -50,6 +50,9 @@ class GlobalSolver {
     // waking BLAS threads, which on two shared cores costs more than it saves.
     Automatic,
     Supernodal,  // dense supernodes through BLAS (OpenBLAS: threaded)
+    // Supernodal with OpenBLAS held to the calling thread: for solves between our own
+    // two-thread sweeps, which idle BLAS threads would otherwise slow down.
+    SupernodalOneThread,
     Simplicial,  // up-looking, no BLAS
   };
   static constexpr int kSupernodalFromDofs = 6000;

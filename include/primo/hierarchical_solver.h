@@ -25,17 +25,23 @@
 
 namespace primo {
 
+// Defaults were chosen by `primo bench drag` on 30k- and 240k-face meshes (docs/performance.md):
+// they keep a drag within a few percent of the minimum at one cycle per frame.
 struct HierarchicalOptions {
   HierarchyOptions hierarchy;
-  int sweeps_per_level = 2;      // local sweeps on the fine level (the paper uses 2)
-  int intermediate_sweeps = 8;   // local sweeps on each level between fine and coarsest (cheap)
-  int coarse_iterations = 1;     // global Newton iterations on the coarsest level per cycle
+  // Local sweeps on the fine level per cycle. The paper uses 2; with the coarse Newton step
+  // and acceleration a second sweep changed neither the drag's lag nor the cycles to
+  // convergence measurably, and costs a third of a cycle.
+  int sweeps_per_level = 1;
+  int intermediate_sweeps = 2;   // local sweeps on a level between fine and coarsest, per visit
+  int coarse_iterations = 1;     // global Newton iterations on the coarsest level per visit
   // Each intermediate level is improved this many times per visit (restrict the levels above,
-  // solve them, prolong, sweep): 1 is a V-cycle, 2 a W-cycle.
-  int intermediate_cycles = 1;
+  // solve them, prolong, sweep): 1 is a V-cycle, 2 a W-cycle. Sweeps on clusters are a weak
+  // smoother; visiting the coarse level twice halved the lag of a 240k-face drag.
+  int intermediate_cycles = 2;
   // Coarse Newton steps may reuse one numeric factorization this many times (modified
   // Newton; the coarse matrix changes little between cycles). 0: factorize every step.
-  int coarse_factor_reuse = 8;
+  int coarse_factor_reuse = 16;
   double intermediate_relaxation = 1.8;  // over-relaxation of intermediate sweeps (1: none)
   // Cycles are accelerated by Anderson acceleration over this many past cycles (0: plain
   // cycles). Memory: 2 x (history + 1) x 12 doubles per fine body.
@@ -62,7 +68,10 @@ class HierarchicalSolver {
   // lower energy (otherwise the history is restarted).
   double cycle(std::vector<BodyState>& fine_state);
   // Forget the acceleration history (the targets changed).
-  void restart_acceleration() { acceleration_.reset(); }
+  void restart_acceleration() {
+    acceleration_.reset();
+    cycles_since_restart_ = 0;
+  }
 
   int levels() const { return int(levels_.size()) + 1; }  // including the fine level
   int bodies(int level) const;  // level 0 = fine
@@ -91,6 +100,7 @@ class HierarchicalSolver {
   int coarse_steps_on_factor_ = 0;
   AndersonAcceleration acceleration_;
   std::vector<BodyState> cycle_input_;
+  int cycles_since_restart_ = 0;
   HierarchicalTimings timings_;
 };
 

@@ -9,6 +9,8 @@
 #include <cmath>
 #include <unordered_map>
 
+#include <dlfcn.h>
+
 #include "primo/horn.h"
 
 namespace primo {
@@ -48,6 +50,31 @@ void add_rotational_inertia(Eigen::Ref<Mat3> m, const Vec3& y, double w) {
 
 // Gauss-Newton blocks of one residual r = X_0 - X_1 with X_s = position_s + y_s (a point) or
 // X_s = y_s (a vector, no translation), linearized as dX = v + omega x y.
+// OpenBLAS limited to the calling thread for a scope (when the BLAS in use is OpenBLAS; other
+// BLAS libraries are left alone). Its helper threads spin for a while after every call, which
+// on two cores takes them from our own threaded sweeps.
+class ScopedSingleThreadBlas {
+ public:
+  ScopedSingleThreadBlas() {
+    static const auto get = reinterpret_cast<int (*)()>(dlsym(RTLD_DEFAULT, "openblas_get_num_threads"));
+    static const auto set = reinterpret_cast<void (*)(int)>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"));
+    if (get && set) {
+      set_ = set;
+      previous_ = get();
+      if (previous_ != 1) set_(1);
+    }
+  }
+  ~ScopedSingleThreadBlas() {
+    if (set_ && previous_ != 1) set_(previous_);
+  }
+  ScopedSingleThreadBlas(const ScopedSingleThreadBlas&) = delete;
+  ScopedSingleThreadBlas& operator=(const ScopedSingleThreadBlas&) = delete;
+
+ private:
+  void (*set_)(int) = nullptr;
+  int previous_ = 1;
+};
+
 struct FeatureBlocks {
   Mat6 h00 = Mat6::Zero(), h11 = Mat6::Zero(), h01 = Mat6::Zero();
   Vec6 g0 = Vec6::Zero(), g1 = Vec6::Zero();
@@ -127,6 +154,7 @@ struct GlobalSolver::Impl {
 
   void build_pattern();
   void assemble(const std::vector<BodyState>& state);
+  void assemble_gradient(const std::vector<BodyState>& state);  // grad only
   bool factorize(double damping, bool with_second_order, const std::vector<BodyState>& state);
   Eigen::VectorXd solve(const Eigen::VectorXd& rhs);
   std::vector<BodyState> apply(const std::vector<BodyState>& state, const Eigen::VectorXd& delta,
@@ -199,8 +227,11 @@ void GlobalSolver::Impl::build_pattern() {
   if (factorization == Factorization::Automatic)
     factorization = n >= kSupernodalFromDofs ? Factorization::Supernodal : Factorization::Simplicial;
   if (n > 0) {
-    if (factorization == Factorization::Supernodal) supernodal.analyzePattern(matrix);
-    else simplicial.analyzePattern(matrix);
+    if (factorization == Factorization::Supernodal ||
+        factorization == Factorization::SupernodalOneThread)
+      supernodal.analyzePattern(matrix);
+    else
+      simplicial.analyzePattern(matrix);
   }
 }
 
@@ -251,6 +282,43 @@ void GlobalSolver::Impl::assemble(const std::vector<BodyState>& state) {
   }
 }
 
+void GlobalSolver::Impl::assemble_gradient(const std::vector<BodyState>& state) {
+  std::fill(grad.begin(), grad.end(), Vec6::Zero());
+  // As FeatureBlocks::add, gradient rows only: w r for a point's translation, w y x r for
+  // each rotation.
+  auto add = [&](int b0, int b1, const Vec3& y0, const Vec3& y1, const Vec3& r, double w,
+                 bool point) {
+    if (point) {
+      grad[b0].head<3>() += w * r;
+      grad[b1].head<3>() -= w * r;
+    }
+    grad[b0].tail<3>() += w * y0.cross(r);
+    grad[b1].tail<3>() -= w * y1.cross(r);
+  };
+  for (const RigidSystem::Coupling& c : sys.couplings) {
+    const int b0 = c.body[0], b1 = c.body[1];
+    if (!active[b0] && !active[b1]) continue;
+    const BodyState& s0 = state[b0];
+    const BodyState& s1 = state[b1];
+    const Vec3 p0 = s0.rotation * c.local[0].mean, p1 = s1.rotation * c.local[1].mean;
+    add(b0, b1, p0, p1, (p0 + s0.position) - (p1 + s1.position), c.weight, true);
+    const Vec3 u0 = s0.rotation * c.local[0].du, u1 = s1.rotation * c.local[1].du;
+    add(b0, b1, u0, u1, u0 - u1, c.weight * kModeWeightDu, false);
+    const Vec3 v0 = s0.rotation * c.local[0].dv, v1 = s1.rotation * c.local[1].dv;
+    add(b0, b1, v0, v1, v0 - v1, c.weight * kModeWeightDv, false);
+    const Vec3 t0 = s0.rotation * c.local[0].duv, t1 = s1.rotation * c.local[1].duv;
+    add(b0, b1, t0, t1, t0 - t1, c.weight * kModeWeightDuv, false);
+  }
+  for (const RigidSystem::Spring& s : sys.springs) {
+    if (!active[s.body]) continue;
+    const BodyState& st = state[s.body];
+    const Vec3 y = st.rotation * s.local;
+    const Vec3 r = y + st.position - s.target;
+    grad[s.body].head<3>() += s.weight * r;
+    grad[s.body].tail<3>() += s.weight * y.cross(r);
+  }
+}
+
 bool GlobalSolver::Impl::factorize(double damping, bool with_second_order,
                                    const std::vector<BodyState>& state) {
   double* values = matrix.valuePtr();
@@ -285,7 +353,11 @@ bool GlobalSolver::Impl::factorize(double damping, bool with_second_order,
   }
   const auto start = Clock::now();
   bool ok;
-  if (factorization == Factorization::Supernodal) {
+  if (factorization == Factorization::SupernodalOneThread) {
+    ScopedSingleThreadBlas one_thread;
+    supernodal.factorize(matrix);
+    ok = supernodal.info() == Eigen::Success;
+  } else if (factorization == Factorization::Supernodal) {
     supernodal.factorize(matrix);
     ok = supernodal.info() == Eigen::Success;
   } else {
@@ -301,6 +373,10 @@ bool GlobalSolver::Impl::factorize(double damping, bool with_second_order,
 }
 
 Eigen::VectorXd GlobalSolver::Impl::solve(const Eigen::VectorXd& rhs) {
+  if (factorization == Factorization::SupernodalOneThread) {
+    ScopedSingleThreadBlas one_thread;
+    return supernodal.solve(rhs);
+  }
   if (factorization == Factorization::Supernodal) return supernodal.solve(rhs);
   return simplicial.solve(rhs);
 }
@@ -367,26 +443,12 @@ GlobalStep GlobalSolver::iterate(std::vector<BodyState>& state, bool exact_hessi
   step.energy_after = step.energy_before;
   if (m.n == 0) return step;
 
-  auto phase = Clock::now();
-  m.assemble(state);
-  m.timings.assembly += seconds_since(phase);
-  double trace_h = 0.0, trace_k = 0.0;
-  for (int b = 0; b < m.sys.n_bodies(); ++b) {
-    if (!m.active[b]) continue;
-    trace_h += m.diag[b].trace();
-    const auto& body = m.sys.bodies[b];
-    trace_k += 3.0 * body.metric_weight + 2.0 * body.metric_pinned.trace();
-  }
-  // Tiny relative damping: invisible on well-posed problems, enough to make rank-deficient
-  // ones factorizable. Raised when CHOLMOD still reports a non-positive pivot.
-  double damping = trace_k > 0 ? 1e-10 * std::max(trace_h, 1e-300) / trace_k : 0.0;
-
   Eigen::VectorXd rhs(m.n);
-  for (int b = 0; b < m.sys.n_bodies(); ++b)
-    for (int k = 0; k < 6; ++k)
-      if (m.dof[b][k] >= 0) rhs[m.dof[b][k]] = -m.grad[b][k];
-
-  const double scale = trace_k > 0 ? std::max(trace_h, 1e-300) / trace_k : 0.0;
+  auto fill_rhs = [&] {
+    for (int b = 0; b < m.sys.n_bodies(); ++b)
+      for (int k = 0; k < 6; ++k)
+        if (m.dof[b][k] >= 0) rhs[m.dof[b][k]] = -m.grad[b][k];
+  };
 
   // Solve with the current factor and halve the step until the energy drops.
   auto search = [&](bool exact, int max_halvings) {
@@ -418,11 +480,34 @@ GlobalStep GlobalSolver::iterate(std::vector<BodyState>& state, bool exact_hessi
   };
 
   // A factor from an earlier iteration still gives a descent direction (the matrix it came
-  // from is positive definite); a few halvings at most before paying for a fresh one.
-  if (reuse_factorization && m.has_factor && search(m.factor_exact, 3)) {
-    step.reused_factorization = true;
-    return step;
+  // from is positive definite), and needs only the gradient; a few halvings at most before
+  // paying for a fresh one.
+  auto phase = Clock::now();
+  if (reuse_factorization && m.has_factor) {
+    m.assemble_gradient(state);
+    m.timings.assembly += seconds_since(phase);
+    fill_rhs();
+    if (search(m.factor_exact, 3)) {
+      step.reused_factorization = true;
+      return step;
+    }
+    phase = Clock::now();
   }
+
+  m.assemble(state);
+  m.timings.assembly += seconds_since(phase);
+  fill_rhs();
+  double trace_h = 0.0, trace_k = 0.0;
+  for (int b = 0; b < m.sys.n_bodies(); ++b) {
+    if (!m.active[b]) continue;
+    trace_h += m.diag[b].trace();
+    const auto& body = m.sys.bodies[b];
+    trace_k += 3.0 * body.metric_weight + 2.0 * body.metric_pinned.trace();
+  }
+  // Tiny relative damping: invisible on well-posed problems, enough to make rank-deficient
+  // ones factorizable. Raised when CHOLMOD still reports a non-positive pivot.
+  double damping = trace_k > 0 ? 1e-10 * std::max(trace_h, 1e-300) / trace_k : 0.0;
+  const double scale = trace_k > 0 ? std::max(trace_h, 1e-300) / trace_k : 0.0;
 
   // One step of the given kind: factorize, solve, halve the step until the energy drops.
   auto try_step = [&](bool exact) {

@@ -2,10 +2,13 @@
 
 #include <chrono>
 
+#include "primo/two_threads.h"
+
 namespace primo {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+constexpr size_t kParallelFrom = 20000;  // couplings or bodies worth a second thread
 double seconds_since(Clock::time_point t) {
   return std::chrono::duration<double>(Clock::now() - t).count();
 }
@@ -126,14 +129,16 @@ HierarchicalSolver::HierarchicalSolver(const RigidSystem& fine, const Hierarchic
           level->rest_metric_pinned[c] - metric_weight[c] * m * m.transpose();
       sys.bodies[c].metric_weight = metric_weight[c];
     }
-    level->plan = plan_sweep(sys);
+    if (l + 1 < hierarchy.coarse_levels()) level->plan = plan_sweep(sys);
     finer_coupling_fine = std::move(coupling_fine);
     levels_.push_back(std::move(level));
     finer = &levels_.back()->system;
     finer_cluster_of = &levels_.back()->cluster_of;
   }
   fine_plan_ = plan_sweep(fine);
-  if (!levels_.empty()) coarse_solver_ = std::make_unique<GlobalSolver>(levels_.back()->system);
+  if (!levels_.empty())
+    coarse_solver_ = std::make_unique<GlobalSolver>(levels_.back()->system,
+                                                    GlobalSolver::Factorization::SupernodalOneThread);
 }
 
 HierarchicalSolver::~HierarchicalSolver() = default;
@@ -147,6 +152,7 @@ void HierarchicalSolver::restrict_level(Level& level, const RigidSystem& finer,
                                         const std::vector<Mat3>* finer_orientation) {
   RigidSystem& sys = level.system;
   const int n = sys.n_bodies();
+  const bool swept = &level != levels_.back().get();  // the coarsest level is solved globally
   std::vector<Vec3> center(n, Vec3::Zero());
   std::vector<double> weight(n, 0.0);
   for (int b = 0; b < finer.n_bodies(); ++b) {
@@ -168,18 +174,21 @@ void HierarchicalSolver::restrict_level(Level& level, const RigidSystem& finer,
     body.metric_pinned = R * level.rest_metric_pinned[c] * R.transpose();
     level.correction[c] = {Mat3::Identity(), body.rest_center};
   }
-  for (size_t k = 0; k < sys.couplings.size(); ++k) {
-    const RigidSystem::Coupling& fc = finer.couplings[level.coupling_parent[k]];
-    RigidSystem::Coupling& c = sys.couplings[k];
-    for (int s = 0; s < 2; ++s) {
-      const BodyState& st = finer_state[fc.body[s]];
-      c.local[s].mean = st.rotation * fc.local[s].mean + st.position - sys.bodies[c.body[s]].rest_center;
-      c.local[s].du = st.rotation * fc.local[s].du;
-      c.local[s].dv = st.rotation * fc.local[s].dv;
-      c.local[s].duv = st.rotation * fc.local[s].duv;
+  on_two_threads(sys.couplings.size(), kParallelFrom, [&](size_t begin, size_t end) {
+    for (size_t k = begin; k < end; ++k) {
+      const RigidSystem::Coupling& fc = finer.couplings[level.coupling_parent[k]];
+      RigidSystem::Coupling& c = sys.couplings[k];
+      for (int s = 0; s < 2; ++s) {
+        const BodyState& st = finer_state[fc.body[s]];
+        c.local[s].mean =
+            st.rotation * fc.local[s].mean + st.position - sys.bodies[c.body[s]].rest_center;
+        c.local[s].du = st.rotation * fc.local[s].du;
+        c.local[s].dv = st.rotation * fc.local[s].dv;
+        c.local[s].duv = st.rotation * fc.local[s].duv;
+      }
+      if (swept) c.update_cross();  // only local matching reads the cross moments
     }
-    c.update_cross();
-  }
+  });
   sys.springs.resize(finer.springs.size());
   for (size_t k = 0; k < finer.springs.size(); ++k) {
     const RigidSystem::Spring& fs = finer.springs[k];
@@ -188,18 +197,20 @@ void HierarchicalSolver::restrict_level(Level& level, const RigidSystem& finer,
                       fs.target, fs.weight};
   }
   index_springs(sys);
-  refresh_sweep_plan(level.plan, sys);
+  if (swept) refresh_sweep_plan(level.plan, sys);
 }
 
 void HierarchicalSolver::prolong_level(const Level& level, std::vector<BodyState>& finer_state) const {
   const RigidSystem& sys = level.system;
-  for (size_t b = 0; b < finer_state.size(); ++b) {
-    const int c = level.parent_of[b];
-    const BodyState& corr = level.correction[c];
-    BodyState& s = finer_state[b];
-    s.position = corr.rotation * (s.position - sys.bodies[c].rest_center) + corr.position;
-    s.rotation = corr.rotation * s.rotation;
-  }
+  on_two_threads(finer_state.size(), kParallelFrom, [&](size_t begin, size_t end) {
+    for (size_t b = begin; b < end; ++b) {
+      const int c = level.parent_of[b];
+      const BodyState& corr = level.correction[c];
+      BodyState& s = finer_state[b];
+      s.position = corr.rotation * (s.position - sys.bodies[c].rest_center) + corr.position;
+      s.rotation = corr.rotation * s.rotation;
+    }
+  });
 }
 
 void HierarchicalSolver::solve_level(int l) {
@@ -236,9 +247,12 @@ void HierarchicalSolver::solve_level(int l) {
 }
 
 double HierarchicalSolver::cycle(std::vector<BodyState>& fine_state) {
-  if (acceleration_.history() > 0) cycle_input_ = fine_state;
+  // The first cycle after a restart is not recorded: a drag updates the targets before every
+  // cycle, and would pay for bookkeeping it can never use.
+  const bool accelerate = acceleration_.history() > 0 && cycles_since_restart_++ > 0;
+  if (accelerate) cycle_input_ = fine_state;
   double energy = plain_cycle(fine_state);
-  if (acceleration_.history() > 0) {
+  if (accelerate) {
     const auto t = Clock::now();
     std::vector<BodyState> proposal = acceleration_.propose(cycle_input_, fine_state);
     if (acceleration_.stored() > 0) {

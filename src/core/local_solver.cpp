@@ -1,6 +1,7 @@
 #include "primo/local_solver.h"
 
 #include "primo/horn.h"
+#include "primo/two_threads.h"
 
 #include <Eigen/Geometry>
 
@@ -181,22 +182,28 @@ SweepPlan plan_sweep(const RigidSystem& system, bool parallel) {
 void refresh_sweep_plan(SweepPlan& plan, const RigidSystem& system) {
   const int n = system.n_bodies();
   plan.joints.resize(system.body_couplings.size());
-  plan.joint_weight.assign(n, 0.0);
-  plan.joint_source.assign(n, Vec3::Zero());
-  for (int b = 0; b < n; ++b) {
-    for (int k = system.coupling_begin[b]; k < system.coupling_begin[b + 1]; ++k) {
-      const auto [ci, side] = system.body_couplings[k];
-      const RigidSystem::Coupling& c = system.couplings[ci];
-      SweepPlan::PackedJoint& j = plan.joints[k];
-      j.other = c.body[1 - side];
-      j.weight = c.weight;
-      j.own_mean = c.weight * c.local[side].mean;
-      j.other_mean = c.weight * c.local[1 - side].mean;
-      j.cross = c.cross[side];
-      plan.joint_weight[b] += c.weight;
-      plan.joint_source[b] += j.own_mean;
+  plan.joint_weight.resize(n);
+  plan.joint_source.resize(n);
+  on_two_threads(size_t(n), 20000, [&](size_t begin, size_t end) {
+    for (int b = int(begin); b < int(end); ++b) {
+      double weight = 0.0;
+      Vec3 source = Vec3::Zero();
+      for (int k = system.coupling_begin[b]; k < system.coupling_begin[b + 1]; ++k) {
+        const auto [ci, side] = system.body_couplings[k];
+        const RigidSystem::Coupling& c = system.couplings[ci];
+        SweepPlan::PackedJoint& j = plan.joints[k];
+        j.other = c.body[1 - side];
+        j.weight = c.weight;
+        j.own_mean = c.weight * c.local[side].mean;
+        j.other_mean = c.weight * c.local[1 - side].mean;
+        j.cross = c.cross[side];
+        weight += c.weight;
+        source += j.own_mean;
+      }
+      plan.joint_weight[b] = weight;
+      plan.joint_source[b] = source;
     }
-  }
+  });
 }
 
 void planned_sweep(const RigidSystem& system, const SweepPlan& plan,

@@ -1,8 +1,7 @@
 #include "primo/rigid_system.h"
 
-#include <thread>
-
 #include "primo/error.h"
+#include "primo/two_threads.h"
 
 namespace primo {
 namespace {
@@ -51,15 +50,12 @@ double RigidSystem::energy(const std::vector<BodyState>& state) const {
       e += coupling_energy(couplings[i], state[couplings[i].body[0]], state[couplings[i].body[1]]);
     return e;
   };
-  // Large systems: the second half on another thread (a fixed split, so the sum is
-  // deterministic).
-  const size_t n = couplings.size(), middle = n >= 40000 ? n / 2 : n;
-  double upper = 0.0;
-  std::thread other;
-  if (middle < n) other = std::thread([&] { upper = sum(middle, n); });
-  double e = internal_energy + sum(0, middle);
-  if (other.joinable()) other.join();
-  e += upper;
+  // Large systems on two threads (a fixed split, so the sum is deterministic).
+  double half[2] = {0.0, 0.0};
+  on_two_threads(couplings.size(), 40000, [&](size_t begin, size_t end) {
+    half[begin == 0 ? 0 : 1] = sum(begin, end);
+  });
+  double e = internal_energy + half[0] + half[1];
   for (const Spring& s : springs)
     e += s.weight * (world_point(state[s.body], s.local) - s.target).squaredNorm();
   return e;
