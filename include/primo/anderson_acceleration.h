@@ -7,6 +7,8 @@
 // the closest rotation. The caller keeps the proposal only if it lowers the energy (and then
 // starts afresh on refusal), so the accelerated iteration stays a descent method.
 
+#include <Eigen/Core>
+#include <algorithm>
 #include <vector>
 
 #include "primo/rigid_system.h"
@@ -15,7 +17,8 @@ namespace primo {
 
 class AndersonAcceleration {
  public:
-  explicit AndersonAcceleration(int history) : history_(history) {}
+  // At most 64 cycles of history.
+  explicit AndersonAcceleration(int history) : history_(std::min(history, 64)) {}
 
   // `input` was mapped to `image` by one step of the iteration. Returns the accelerated next
   // state, or `image` itself while there is no history yet. Bodies whose state never changed
@@ -32,6 +35,7 @@ class AndersonAcceleration {
   int history_;
   std::vector<double> last_residual_, last_image_;
   std::vector<std::vector<double>> delta_residual_, delta_image_;  // oldest first
+  Eigen::MatrixXd gram_;  // inner products of the residual differences
 };
 
 }  // namespace primo

@@ -3,20 +3,17 @@
 #include <Eigen/Cholesky>
 
 #include "primo/horn.h"
+#include "primo/two_threads.h"
 
 namespace primo {
 namespace {
 
 constexpr int kEmbedding = 12;  // rotation (9) and position (3)
+constexpr size_t kParallelFrom = 20000;  // bodies worth a second thread
 
-std::vector<double> embed(const std::vector<BodyState>& state) {
-  std::vector<double> v(state.size() * kEmbedding);
-  for (size_t b = 0; b < state.size(); ++b) {
-    double* out = &v[b * kEmbedding];
-    for (int k = 0; k < 9; ++k) out[k] = state[b].rotation(k % 3, k / 3);
-    for (int k = 0; k < 3; ++k) out[9 + k] = state[b].position[k];
-  }
-  return v;
+void embed(const BodyState& s, double* out) {
+  for (int k = 0; k < 9; ++k) out[k] = s.rotation(k % 3, k / 3);
+  for (int k = 0; k < 3; ++k) out[9 + k] = s.position[k];
 }
 
 }  // namespace
@@ -26,25 +23,39 @@ void AndersonAcceleration::reset() {
   last_image_.clear();
   delta_residual_.clear();
   delta_image_.clear();
+  gram_.resize(0, 0);
 }
 
 std::vector<BodyState> AndersonAcceleration::propose(const std::vector<BodyState>& input,
                                                      const std::vector<BodyState>& image) {
   if (history_ <= 0) return image;
-  std::vector<double> g = embed(image);
-  std::vector<double> f = embed(input);
-  for (size_t i = 0; i < f.size(); ++i) f[i] = g[i] - f[i];
+  const size_t n_bodies = image.size(), n = n_bodies * kEmbedding;
+  // Image g = G(x) and residual f = G(x) - x, embedded.
+  std::vector<double> g(n), f(n);
+  on_two_threads(n_bodies, kParallelFrom, [&](size_t begin, size_t end) {
+    double x[kEmbedding];
+    for (size_t b = begin; b < end; ++b) {
+      embed(image[b], &g[b * kEmbedding]);
+      embed(input[b], x);
+      for (int k = 0; k < kEmbedding; ++k) f[b * kEmbedding + k] = g[b * kEmbedding + k] - x[k];
+    }
+  });
 
-  if (!last_residual_.empty() && last_residual_.size() == f.size()) {
+  if (last_residual_.size() == n) {
     // The last residual and image become the newest differences (in place: memory is
     // 2 x (history + 1) state vectors).
-    for (size_t i = 0; i < f.size(); ++i) {
-      last_residual_[i] = f[i] - last_residual_[i];
-      last_image_[i] = g[i] - last_image_[i];
-    }
+    on_two_threads(n, kParallelFrom * kEmbedding, [&](size_t begin, size_t end) {
+      for (size_t i = begin; i < end; ++i) {
+        last_residual_[i] = f[i] - last_residual_[i];
+        last_image_[i] = g[i] - last_image_[i];
+      }
+    });
     if (int(delta_residual_.size()) == history_) {
       delta_residual_.erase(delta_residual_.begin());
       delta_image_.erase(delta_image_.begin());
+      const int k = int(gram_.rows()) - 1;
+      const Eigen::MatrixXd kept = gram_.bottomRightCorner(k, k);
+      gram_ = kept;
     }
     delta_residual_.push_back(std::move(last_residual_));
     delta_image_.push_back(std::move(last_image_));
@@ -54,38 +65,50 @@ std::vector<BodyState> AndersonAcceleration::propose(const std::vector<BodyState
   const int m = int(delta_residual_.size());
   std::vector<BodyState> next = image;
   if (m > 0) {
-    // Least squares min |f - dF theta| by the normal equations, lightly regularized (the
-    // columns become nearly dependent as the iteration converges).
-    Eigen::MatrixXd gram(m, m);
+    // One pass for the Gram matrix's new column (the others are kept from earlier calls) and
+    // the right-hand side dF^T f of the least-squares problem min |f - dF theta|.
+    const std::vector<double>& newest = delta_residual_.back();
+    double sums[2][2 * 64] = {};  // per thread: m column entries, then m right-hand sides
+    on_two_threads(n, kParallelFrom * kEmbedding, [&](size_t begin, size_t end) {
+      double* s = sums[begin == 0 ? 0 : 1];
+      for (int a = 0; a < m; ++a) {
+        const double* da = delta_residual_[a].data();
+        double column = 0.0, rhs = 0.0;
+        for (size_t i = begin; i < end; ++i) {
+          column += da[i] * newest[i];
+          rhs += da[i] * f[i];
+        }
+        s[a] = column;
+        s[m + a] = rhs;
+      }
+    });
+    gram_.conservativeResize(m, m);
     Eigen::VectorXd rhs(m);
     for (int a = 0; a < m; ++a) {
-      const std::vector<double>& da = delta_residual_[a];
-      double r = 0.0;
-      for (size_t i = 0; i < f.size(); ++i) r += da[i] * f[i];
-      rhs[a] = r;
-      for (int b = 0; b <= a; ++b) {
-        const std::vector<double>& db = delta_residual_[b];
-        double s = 0.0;
-        for (size_t i = 0; i < f.size(); ++i) s += da[i] * db[i];
-        gram(a, b) = gram(b, a) = s;
-      }
+      gram_(a, m - 1) = gram_(m - 1, a) = sums[0][a] + sums[1][a];
+      rhs[a] = sums[0][m + a] + sums[1][m + a];
     }
-    gram.diagonal().array() += 1e-10 * gram.trace() / m + 1e-300;
-    const Eigen::VectorXd theta = gram.ldlt().solve(rhs);
+    // Lightly regularized: the columns become nearly dependent as the iteration converges.
+    Eigen::MatrixXd regularized = gram_;
+    regularized.diagonal().array() += 1e-10 * gram_.trace() / m + 1e-300;
+    const Eigen::VectorXd theta = regularized.ldlt().solve(rhs);
     if (theta.allFinite()) {
-      double x[kEmbedding];
-      for (size_t b = 0; b < next.size(); ++b) {
-        const size_t at = b * kEmbedding;
-        for (int k = 0; k < kEmbedding; ++k) {
-          x[k] = g[at + k];
-          for (int a = 0; a < m; ++a) x[k] -= theta[a] * delta_image_[a][at + k];
+      on_two_threads(n_bodies, kParallelFrom, [&](size_t begin, size_t end) {
+        double x[kEmbedding];
+        for (size_t b = begin; b < end; ++b) {
+          const size_t at = b * kEmbedding;
+          for (int k = 0; k < kEmbedding; ++k) {
+            x[k] = g[at + k];
+            for (int a = 0; a < m; ++a) x[k] -= theta[a] * delta_image_[a][at + k];
+          }
+          Mat3 r;
+          for (int k = 0; k < 9; ++k) r(k % 3, k / 3) = x[k];
+          // Unchanged through the history: keep the image's rotation bit for bit.
+          if (r != image[b].rotation)
+            next[b].rotation = horn_rotation(r.transpose(), image[b].rotation);
+          for (int k = 0; k < 3; ++k) next[b].position[k] = x[9 + k];
         }
-        Mat3 r;
-        for (int k = 0; k < 9; ++k) r(k % 3, k / 3) = x[k];
-        // Unchanged through the history: keep the image's rotation bit for bit.
-        if (r != image[b].rotation) next[b].rotation = horn_rotation(r.transpose(), image[b].rotation);
-        for (int k = 0; k < 3; ++k) next[b].position[k] = x[9 + k];
-      }
+      });
     }
   }
   last_residual_ = std::move(f);
