@@ -31,6 +31,8 @@ struct Host : ScriptHost {
   }
   void cursor(double& x, double& y) override { x = cx, y = cy; }
   bool settled() override { return is_settled; }
+  bool nothing_open() override { return is_empty; }
+  bool is_empty = false;
   void run(const ScriptCommand& c) override { ran.push_back(c.text); }
 };
 
@@ -116,6 +118,13 @@ TEST(EditorScript, TimedMovesAndWaits) {
   r.update(0.0, host);
   EXPECT_TRUE(r.failed());
   EXPECT_NE(r.error().find("line 1"), std::string::npos);
+
+  // After a failed open there is nothing to settle: fail at once, not after the timeout.
+  ScriptPlayer s(parse_script("wait-settled 300\n", "s"));
+  host.is_empty = true;
+  s.update(0.0, host);
+  EXPECT_TRUE(s.failed());
+  EXPECT_NE(s.error().find("nothing is open"), std::string::npos) << s.error();
 }
 
 TEST(EditorScript, ReportAndWaitFile) {

@@ -198,6 +198,7 @@ bool ScriptPlayer::step(double now, ScriptHost& host) {
     case K::Wait: return elapsed >= c.seconds;
     case K::WaitSettled:
       if (host.settled()) return true;
+      if (host.nothing_open()) throw Error("nothing is open to settle (did an open fail?)");
       if (elapsed > c.seconds) throw Error("the solver did not settle within " + std::to_string(c.seconds) + " s");
       return false;
     case K::Move: {

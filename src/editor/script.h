@@ -66,6 +66,8 @@ class ScriptHost {
   virtual void cursor(double& x, double& y) = 0;
   // The solver is idle for the latest edit and the view shows its result.
   virtual bool settled() = 0;
+  // No mesh is open and none is loading (an `open` failed): waiting to settle is pointless.
+  virtual bool nothing_open() { return false; }
   // Open, SaveMesh, SaveScenario, Screenshot, Echo, Quit. Throws primo::Error on failure.
   // (Report is printed by the player from locate().)
   virtual void run(const ScriptCommand& command) = 0;

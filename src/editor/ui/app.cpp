@@ -106,6 +106,7 @@ class App : public ScriptHost {
   void locate(const ScriptCommand& c, double& x, double& y) override;
   void cursor(double& x, double& y) override { x = cursor_.x, y = cursor_.y; }
   bool settled() override { return editor_.settled() && renderer_->has_mesh(); }
+  bool nothing_open() override { return !editor_.document() && !editor_.file_task_running(); }
   void run(const ScriptCommand& c) override;
 
   // GLFW callbacks
