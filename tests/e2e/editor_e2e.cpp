@@ -15,65 +15,19 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 #include <thread>
 
+#include "e2e_support.h"
 #include "primo/geometry.h"
 #include "primo/mesh_io.h"
 #include "primo/scenario.h"
 
 namespace fs = std::filesystem;
 using namespace primo;
+using namespace primo::e2e;
 
 namespace {
-
-const std::string kPrimo = PRIMO_EXECUTABLE;
-
-std::string artifacts(const std::string& test) {
-  const fs::path dir = fs::path(PRIMO_E2E_ARTIFACTS) / test;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir.string();
-}
-
-std::string read_text(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-void write_text(const std::string& path, const std::string& text) { std::ofstream(path) << text; }
-
-int run(const std::string& command) {
-  const int status = std::system(command.c_str());
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
-
-// A 0.2 x 1 x 0.2 bar of 4 x 40 quads per side: fixed base, position-only top, a softer middle.
-std::string make_bar_scenario(const std::string& dir) {
-  EXPECT_EQ(run(kPrimo + " generate bar --width 0.2 --length 1 --across 2 --along 20 -o " + dir +
-                "/bar.obj > /dev/null"),
-            0);
-  const std::string path = dir + "/bar-setup.json";
-  write_text(path, R"({
-  "format": "primo-scenario/1",
-  "mesh": "bar.obj",
-  "regions": [ { "name": "soft middle", "select": { "box": { "min": [-1, 0.4, -1], "max": [1, 0.6, 1] } }, "height": 0.5 } ],
-  "handles": [
-    { "name": "base", "select": { "box": { "min": [-1, -1, -1], "max": [1, 0.06, 1] } }, "fix": "all" },
-    { "name": "top", "select": { "box": { "min": [-1, 0.94, -1], "max": [1, 2, 1] } }, "fix": "position" }
-  ]
-})");
-  return path;
-}
-
-double max_vertex_distance(const Mesh& a, const Mesh& b) {
-  double m = 0;
-  for (auto v : a.vertices()) m = std::max(m, (a.point(v) - b.point(OpenMesh::VertexHandle(v.idx()))).norm());
-  return m;
-}
 
 // The saved scenario solved by `primo deform` equals the editor's saved mesh.
 void expect_deform_reproduces(const std::string& dir) {

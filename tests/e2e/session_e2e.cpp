@@ -7,66 +7,21 @@
 // Artifacts stay in <build>/tests/e2e-artifacts/session-*/.
 
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 
+#include "e2e_support.h"
 #include "primo/geometry.h"
 #include "primo/mesh_io.h"
 
 namespace fs = std::filesystem;
 using namespace primo;
-
-namespace {
-
-const std::string kPrimo = PRIMO_EXECUTABLE;
-
-std::string artifacts(const std::string& test) {
-  const std::string dir = std::string(PRIMO_E2E_ARTIFACTS) + "/" + test;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
-
-std::string read_text(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-void write_text(const std::string& path, const std::string& text) { std::ofstream(path) << text; }
-
-int run(const std::string& command) {
-  const int status = std::system(command.c_str());
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
-
-double max_vertex_distance(const Mesh& a, const Mesh& b) {
-  double m = 0;
-  for (auto v : a.vertices()) m = std::max(m, (a.point(v) - b.point(OpenMesh::VertexHandle(v.idx()))).norm());
-  return m;
-}
-
-}  // namespace
+using namespace primo::e2e;
 
 TEST(SessionE2E, RecordedSessionReplaysToTheEditorsMesh) {
   const std::string dir = artifacts("session-record-replay");
-  ASSERT_EQ(run(kPrimo + " generate bar --width 0.2 --length 1 --across 2 --along 20 -o " + dir +
-                "/bar.obj > /dev/null"),
-            0);
-  write_text(dir + "/bar-setup.json", R"({
-  "format": "primo-scenario/1",
-  "mesh": "bar.obj",
-  "regions": [ { "select": { "box": { "min": [-1, 0.4, -1], "max": [1, 0.6, 1] } }, "height": 0.5 } ],
-  "handles": [
-    { "name": "base", "select": { "box": { "min": [-1, -1, -1], "max": [1, 0.06, 1] } }, "fix": "all" },
-    { "name": "top", "select": { "box": { "min": [-1, 0.94, -1], "max": [1, 2, 1] } }, "fix": "position" }
-  ]
-})");
+  make_bar_scenario(dir);
   write_text(dir + "/record.txt", "wait-settled 60\nrecord-start\nmove @top\nwait 0.2\npress left\n"
                                   "move @top 150 30 over 1.0\nrelease left\nwait-settled 120\n"
                                   "key ctrl+z\nwait 0.2\nkey ctrl+shift+z\nwait-settled 120\n"
@@ -107,7 +62,6 @@ TEST(SessionE2E, RecordedSessionReplaysToTheEditorsMesh) {
   EXPECT_LT(difference, 1e-6 * diagonal);
 
   // Played back in the editor (from the setup again), the session ends at the same mesh.
-  std::istringstream events(session);
   write_text(dir + "/play.txt", "wait-settled 60\nplay-session " + dir + "/pose.session.json\n"
                                 "wait 8\nwait-settled 120\nsave-mesh " + dir + "/played.obj\nquit\n");
   ASSERT_EQ(run(kPrimo + " edit " + dir + "/bar-setup.json --script " + dir + "/play.txt > " + dir +
