@@ -48,8 +48,6 @@ void add_rotational_inertia(Eigen::Ref<Mat3> m, const Vec3& y, double w) {
   m.diagonal().array() += w * y.squaredNorm();
 }
 
-// Gauss-Newton blocks of one residual r = X_0 - X_1 with X_s = position_s + y_s (a point) or
-// X_s = y_s (a vector, no translation), linearized as dX = v + omega x y.
 // OpenBLAS limited to the calling thread for a scope (when the BLAS in use is OpenBLAS; other
 // BLAS libraries are left alone). Its helper threads spin for a while after every call, which
 // on two cores takes them from our own threaded sweeps.
@@ -75,6 +73,24 @@ class ScopedSingleThreadBlas {
   int previous_ = 1;
 };
 
+// Calls residual(y0, y1, r, w, point) for the four modes of a coupling in the given states
+// (y_s the side's mode turned into world orientation, r = X_0 - X_1): the mean as a point,
+// the derivatives as vectors.
+template <class Residual>
+void for_each_residual(const RigidSystem::Coupling& c, const BodyState& s0, const BodyState& s1,
+                       Residual&& residual) {
+  const Vec3 p0 = s0.rotation * c.local[0].mean, p1 = s1.rotation * c.local[1].mean;
+  residual(p0, p1, (p0 + s0.position) - (p1 + s1.position), c.weight, true);
+  const Vec3 u0 = s0.rotation * c.local[0].du, u1 = s1.rotation * c.local[1].du;
+  residual(u0, u1, u0 - u1, c.weight * kModeWeightDu, false);
+  const Vec3 v0 = s0.rotation * c.local[0].dv, v1 = s1.rotation * c.local[1].dv;
+  residual(v0, v1, v0 - v1, c.weight * kModeWeightDv, false);
+  const Vec3 t0 = s0.rotation * c.local[0].duv, t1 = s1.rotation * c.local[1].duv;
+  residual(t0, t1, t0 - t1, c.weight * kModeWeightDuv, false);
+}
+
+// Gauss-Newton blocks of one residual r = X_0 - X_1 with X_s = position_s + y_s (a point) or
+// X_s = y_s (a vector, no translation), linearized as dX = v + omega x y.
 struct FeatureBlocks {
   Mat6 h00 = Mat6::Zero(), h11 = Mat6::Zero(), h01 = Mat6::Zero();
   Vec6 g0 = Vec6::Zero(), g1 = Vec6::Zero();
@@ -245,17 +261,9 @@ void GlobalSolver::Impl::assemble(const std::vector<BodyState>& state) {
     const RigidSystem::Coupling& c = sys.couplings[ci];
     const int b0 = c.body[0], b1 = c.body[1];
     if (!active[b0] && !active[b1]) continue;
-    const BodyState& s0 = state[b0];
-    const BodyState& s1 = state[b1];
     FeatureBlocks fb;
-    const Vec3 p0 = s0.rotation * c.local[0].mean, p1 = s1.rotation * c.local[1].mean;
-    fb.add(p0, p1, (p0 + s0.position) - (p1 + s1.position), c.weight, true);
-    const Vec3 u0 = s0.rotation * c.local[0].du, u1 = s1.rotation * c.local[1].du;
-    fb.add(u0, u1, u0 - u1, c.weight * kModeWeightDu, false);
-    const Vec3 v0 = s0.rotation * c.local[0].dv, v1 = s1.rotation * c.local[1].dv;
-    fb.add(v0, v1, v0 - v1, c.weight * kModeWeightDv, false);
-    const Vec3 t0 = s0.rotation * c.local[0].duv, t1 = s1.rotation * c.local[1].duv;
-    fb.add(t0, t1, t0 - t1, c.weight * kModeWeightDuv, false);
+    for_each_residual(c, state[b0], state[b1], [&](const Vec3& y0, const Vec3& y1, const Vec3& r, double w,
+                                     bool point) { fb.add(y0, y1, r, w, point); });
 
     diag[b0] += fb.h00;
     diag[b1] += fb.h11;
@@ -286,28 +294,18 @@ void GlobalSolver::Impl::assemble_gradient(const std::vector<BodyState>& state) 
   std::fill(grad.begin(), grad.end(), Vec6::Zero());
   // As FeatureBlocks::add, gradient rows only: w r for a point's translation, w y x r for
   // each rotation.
-  auto add = [&](int b0, int b1, const Vec3& y0, const Vec3& y1, const Vec3& r, double w,
-                 bool point) {
-    if (point) {
-      grad[b0].head<3>() += w * r;
-      grad[b1].head<3>() -= w * r;
-    }
-    grad[b0].tail<3>() += w * y0.cross(r);
-    grad[b1].tail<3>() -= w * y1.cross(r);
-  };
   for (const RigidSystem::Coupling& c : sys.couplings) {
     const int b0 = c.body[0], b1 = c.body[1];
     if (!active[b0] && !active[b1]) continue;
-    const BodyState& s0 = state[b0];
-    const BodyState& s1 = state[b1];
-    const Vec3 p0 = s0.rotation * c.local[0].mean, p1 = s1.rotation * c.local[1].mean;
-    add(b0, b1, p0, p1, (p0 + s0.position) - (p1 + s1.position), c.weight, true);
-    const Vec3 u0 = s0.rotation * c.local[0].du, u1 = s1.rotation * c.local[1].du;
-    add(b0, b1, u0, u1, u0 - u1, c.weight * kModeWeightDu, false);
-    const Vec3 v0 = s0.rotation * c.local[0].dv, v1 = s1.rotation * c.local[1].dv;
-    add(b0, b1, v0, v1, v0 - v1, c.weight * kModeWeightDv, false);
-    const Vec3 t0 = s0.rotation * c.local[0].duv, t1 = s1.rotation * c.local[1].duv;
-    add(b0, b1, t0, t1, t0 - t1, c.weight * kModeWeightDuv, false);
+    for_each_residual(c, state[b0], state[b1],
+                      [&](const Vec3& y0, const Vec3& y1, const Vec3& r, double w, bool point) {
+                        if (point) {
+                          grad[b0].head<3>() += w * r;
+                          grad[b1].head<3>() -= w * r;
+                        }
+                        grad[b0].tail<3>() += w * y0.cross(r);
+                        grad[b1].tail<3>() -= w * y1.cross(r);
+                      });
   }
   for (const RigidSystem::Spring& s : sys.springs) {
     if (!active[s.body]) continue;

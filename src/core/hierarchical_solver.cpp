@@ -17,13 +17,11 @@ double seconds_since(Clock::time_point t) {
 
 struct HierarchicalSolver::Level {
   RigidSystem system;              // couplings/springs rewritten by every restriction
-  std::vector<int> cluster_of;     // fine body -> cluster
   std::vector<int> parent_of;      // body of the next finer level (or fine body) -> cluster
   std::vector<int> coupling_parent;  // level coupling -> same joint's coupling one level finer
   std::vector<double> child_weight;  // faces of each body of the next finer level
   // The metric of a cluster is its rest metric turned by the rotation of a representative
-  // fine body, found through one body of the next finer level that contains it.
-  std::vector<int> representative;        // cluster -> fine body
+  // fine body (its largest), found through the body of the next finer level that holds it.
   std::vector<int> representative_child;  // cluster -> body of the next finer level
   std::vector<Mat3> orientation;          // cluster -> representative's rotation at restriction
   std::vector<Vec3> rest_metric_mean;
@@ -46,30 +44,30 @@ HierarchicalSolver::HierarchicalSolver(const RigidSystem& fine, const Hierarchic
   const std::vector<int>* finer_cluster_of = nullptr;
   for (int l = 0; l < hierarchy.coarse_levels(); ++l) {
     auto level = std::make_unique<Level>();
-    level->cluster_of = hierarchy.cluster_of[l];
+    const std::vector<int>& cluster_of = hierarchy.cluster_of[l];  // fine body -> cluster
     const int n_clusters = hierarchy.cluster_count[l];
     const int n_finer = finer->n_bodies();
     level->parent_of.assign(n_finer, -1);
     level->child_weight.assign(n_finer, 0.0);
     for (int b = 0; b < fine.n_bodies(); ++b) {
       const int child = finer_cluster_of ? (*finer_cluster_of)[b] : b;
-      level->parent_of[child] = level->cluster_of[b];
+      level->parent_of[child] = cluster_of[b];
       level->child_weight[child] += double(fine.bodies[b].faces.size());
     }
     std::vector<int> face_cluster(n_faces);
-    for (int f = 0; f < n_faces; ++f) face_cluster[f] = level->cluster_of[fine.face_body[f]];
+    for (int f = 0; f < n_faces; ++f) face_cluster[f] = cluster_of[fine.face_body[f]];
     std::vector<BodyKind> kinds(n_clusters, BodyKind::Free);
-    level->representative.assign(n_clusters, -1);
+    std::vector<int> representative(n_clusters, -1);
     for (int b = 0; b < fine.n_bodies(); ++b) {
-      const int c = level->cluster_of[b];
+      const int c = cluster_of[b];
       if (fine.bodies[b].kind != BodyKind::Free) kinds[c] = fine.bodies[b].kind;  // alone
-      if (level->representative[c] < 0 ||
-          fine.bodies[b].faces.size() > fine.bodies[level->representative[c]].faces.size())
-        level->representative[c] = b;
+      if (representative[c] < 0 ||
+          fine.bodies[b].faces.size() > fine.bodies[representative[c]].faces.size())
+        representative[c] = b;
     }
     level->representative_child.resize(n_clusters);
     for (int c = 0; c < n_clusters; ++c) {
-      const int rep = level->representative[c];
+      const int rep = representative[c];
       level->representative_child[c] = finer_cluster_of ? (*finer_cluster_of)[rep] : rep;
     }
     level->orientation.assign(n_clusters, Mat3::Identity());
@@ -77,14 +75,14 @@ HierarchicalSolver::HierarchicalSolver(const RigidSystem& fine, const Hierarchic
     sys.face_body = face_cluster;
     sys.bodies.resize(n_clusters);
     for (int b = 0; b < fine.n_bodies(); ++b) {
-      RigidSystem::Body& cluster = sys.bodies[level->cluster_of[b]];
+      RigidSystem::Body& cluster = sys.bodies[cluster_of[b]];
       cluster.faces.insert(cluster.faces.end(), fine.bodies[b].faces.begin(), fine.bodies[b].faces.end());
     }
     for (int c = 0; c < n_clusters; ++c) sys.bodies[c].kind = kinds[c];
     std::vector<int> coupling_fine;
     for (size_t k = 0; k < finer->couplings.size(); ++k) {
       const auto& fc = fine.couplings[finer_coupling_fine[k]];
-      const int a = level->cluster_of[fc.body[0]], b = level->cluster_of[fc.body[1]];
+      const int a = cluster_of[fc.body[0]], b = cluster_of[fc.body[1]];
       if (a == b) continue;
       RigidSystem::Coupling c = fc;
       c.body[0] = a;
@@ -103,7 +101,7 @@ HierarchicalSolver::HierarchicalSolver(const RigidSystem& fine, const Hierarchic
     std::vector<double> weight(n_clusters, 0.0);
     std::vector<Vec3> rest_center(n_clusters, Vec3::Zero());
     for (int b = 0; b < fine.n_bodies(); ++b) {
-      const int c = level->cluster_of[b];
+      const int c = cluster_of[b];
       const double w = double(fine.bodies[b].faces.size());
       rest_center[c] += w * fine.bodies[b].rest_center;
       weight[c] += w;
@@ -112,7 +110,7 @@ HierarchicalSolver::HierarchicalSolver(const RigidSystem& fine, const Hierarchic
     std::vector<double> metric_weight(n_clusters, 0.0);
     for (int b = 0; b < fine.n_bodies(); ++b) {
       const RigidSystem::Body& body = fine.bodies[b];
-      const int c = level->cluster_of[b];
+      const int c = cluster_of[b];
       const Vec3 offset = body.rest_center - rest_center[c];
       // metric_pinned of the fine body is about its own rest_center; shift to the cluster's.
       const Vec3 first = body.metric_weight * body.metric_mean;
@@ -133,7 +131,7 @@ HierarchicalSolver::HierarchicalSolver(const RigidSystem& fine, const Hierarchic
     finer_coupling_fine = std::move(coupling_fine);
     levels_.push_back(std::move(level));
     finer = &levels_.back()->system;
-    finer_cluster_of = &levels_.back()->cluster_of;
+    finer_cluster_of = &cluster_of;
   }
   fine_plan_ = plan_sweep(fine);
   if (!levels_.empty())

@@ -45,6 +45,17 @@ BodyState match_from_moments(BodyKind kind, const BodyState& current, double poi
   return next;
 }
 
+// One joint's state-dependent terms, given its weight-scaled own and other means in body
+// coordinates: the targets t = R_o other + p_o give sum w t = R_o (w other) + w p_o and
+// sum w own t^T = cross R_o^T + (w own) p_o^T.
+void add_joint(double weight, const Vec3& own_mean, const Vec3& other_mean, const Mat3& joint_cross,
+               const BodyState& other, Vec3& target_sum, Mat3& cross) {
+  target_sum.noalias() += other.rotation * other_mean;
+  target_sum += weight * other.position;
+  cross.noalias() += joint_cross * other.rotation.transpose();
+  cross.noalias() += own_mean * other.position.transpose();
+}
+
 void add_springs(const RigidSystem& system, int body, double& point_weight, Vec3& source_sum,
                  Vec3& target_sum, Mat3& cross) {
   for (int k = system.spring_begin[body]; k < system.spring_begin[body + 1]; ++k) {
@@ -94,12 +105,7 @@ BodyState planned_match(const RigidSystem& system, const SweepPlan& plan,
   const int end = system.coupling_begin[body + 1];
   for (int k = system.coupling_begin[body]; k < end; ++k) {
     const SweepPlan::PackedJoint& j = plan.joints[k];
-    const BodyState& os = state[j.other];
-    // Targets t = R_o other + p_o: sum w own t^T = cross R_o^T + (w own) p_o^T.
-    target_sum.noalias() += os.rotation * j.other_mean;
-    target_sum += j.weight * os.position;
-    cross.noalias() += j.cross * os.rotation.transpose();
-    cross.noalias() += j.own_mean * os.position.transpose();
+    add_joint(j.weight, j.own_mean, j.other_mean, j.cross, state[j.other], target_sum, cross);
   }
   add_springs(system, body, point_weight, source_sum, target_sum, cross);
   const BodyState matched =
@@ -123,15 +129,11 @@ BodyState local_match(const RigidSystem& system, const std::vector<BodyState>& s
   for (int k = system.coupling_begin[body]; k < system.coupling_begin[body + 1]; ++k) {
     const auto [ci, side] = system.body_couplings[k];
     const RigidSystem::Coupling& c = system.couplings[ci];
-    const BodyState& os = state[c.body[1 - side]];
-    const double w = c.weight;
-    // With targets t = R_o other + p_o: sum w own t^T = cross[side] R_o^T + (w own.mean) p_o^T.
-    const Vec3 weighted_source = w * c.local[side].mean;
-    point_weight += w;
-    source_sum += weighted_source;
-    target_sum += w * world_point(os, c.local[1 - side].mean);
-    cross.noalias() += c.cross[side] * os.rotation.transpose();
-    cross.noalias() += weighted_source * os.position.transpose();
+    const Vec3 own_mean = c.weight * c.local[side].mean;
+    point_weight += c.weight;
+    source_sum += own_mean;
+    add_joint(c.weight, own_mean, c.weight * c.local[1 - side].mean, c.cross[side],
+              state[c.body[1 - side]], target_sum, cross);
   }
   add_springs(system, body, point_weight, source_sum, target_sum, cross);
   return match_from_moments(b.kind, current, point_weight, source_sum, target_sum, cross);
@@ -147,8 +149,8 @@ SweepPlan plan_sweep(const RigidSystem& system, bool parallel) {
   std::vector<int> movable;
   for (int b = 0; b < n; ++b)
     if (system.bodies[b].kind != BodyKind::Fixed) movable.push_back(b);
-  // Below this size a thread costs more than it saves.
   refresh_sweep_plan(plan, system);
+  // Below this size a thread costs more than it saves.
   if (!parallel || movable.size() < 4000) {
     plan.half[0] = movable;
     return plan;
