@@ -7,32 +7,14 @@
 #include <cstdlib>
 #include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
 
 #include "test_support.h"
 
+using primo::test::CommandResult;
+using primo::test::read_text;
+using primo::test::run_primo;
+
 namespace {
-
-std::string read_file(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-struct CommandResult {
-  int exit_code = -1;
-  std::string out, err;
-};
-
-CommandResult run_primo(const std::string& arguments) {
-  const std::string dir = primo::test::temp_dir();
-  const std::string command = std::string(PRIMO_EXECUTABLE) + " " + arguments + " >" + dir +
-                              "/out.txt 2>" + dir + "/err.txt";
-  const int status = std::system(command.c_str());
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, read_file(dir + "/out.txt"),
-          read_file(dir + "/err.txt")};
-}
 
 nlohmann::json read_json(const std::string& path) {
   std::ifstream in(path);

@@ -3,40 +3,20 @@
 
 #include <gtest/gtest.h>
 
-#include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
 
 #include "primo/mesh_io.h"
 #include "test_support.h"
+
+using primo::test::CommandResult;
+using primo::test::read_text;
+using primo::test::run_primo;
 
 namespace fs = std::filesystem;
 using primo::test::write_text;
 
 namespace {
-
-struct CommandResult {
-  int exit_code;
-  std::string out, err;
-};
-
-std::string read_file(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-CommandResult run_primo(const std::string& arguments) {
-  const std::string dir = primo::test::temp_dir();
-  const std::string command = std::string(PRIMO_EXECUTABLE) + " " + arguments + " >" + dir +
-                              "/out.txt 2>" + dir + "/err.txt";
-  const int status = std::system(command.c_str());
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, read_file(dir + "/out.txt"),
-          read_file(dir + "/err.txt")};
-}
 
 int count_lines(const std::string& s) { return int(std::count(s.begin(), s.end(), '\n')); }
 
@@ -100,7 +80,7 @@ TEST_F(DeformCli, SolvesAScenarioAndWritesStatistics) {
   const primo::Mesh out = primo::load_mesh(dir + "/out.obj");
   EXPECT_EQ(out.n_vertices(), 8u);
   EXPECT_EQ(out.n_faces(), 6u);
-  const auto stats = nlohmann::json::parse(read_file(dir + "/s.json"));
+  const auto stats = nlohmann::json::parse(read_text(dir + "/s.json"));
   for (const char* key : {"energy", "iterations", "converged", "seconds", "faces", "vertices"})
     EXPECT_TRUE(stats.contains(key)) << key;
   EXPECT_EQ(stats["faces"], 6);
@@ -115,8 +95,8 @@ TEST_F(DeformCli, LocalAndGlobalSolversAgree) {
   const CommandResult l = run_primo("deform " + dir + "/local.json -o " + dir + "/l.off --solver local --stats " + dir + "/l.json");
   ASSERT_EQ(g.exit_code, 0) << g.err;
   ASSERT_EQ(l.exit_code, 0) << l.err;
-  const auto gs = nlohmann::json::parse(read_file(dir + "/g.json"));
-  const auto ls = nlohmann::json::parse(read_file(dir + "/l.json"));
+  const auto gs = nlohmann::json::parse(read_text(dir + "/g.json"));
+  const auto ls = nlohmann::json::parse(read_text(dir + "/l.json"));
   EXPECT_EQ(ls["solver"], "local");
   EXPECT_EQ(gs["solver"], "global");
   EXPECT_NEAR(ls["energy"].get<double>(), gs["energy"].get<double>(), 1e-6 * gs["energy"].get<double>());
@@ -127,7 +107,7 @@ TEST_F(DeformCli, ReproducesTheSpecificationExample) {
   if (!primo::test::exists(scenario)) GTEST_SKIP() << "skipped: " << scenario << " is not present";
   const CommandResult r = run_primo("deform " + scenario + " -o " + dir + "/c.obj --stats " + dir + "/c.json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  const auto stats = nlohmann::json::parse(read_file(dir + "/c.json"));
+  const auto stats = nlohmann::json::parse(read_text(dir + "/c.json"));
   EXPECT_NEAR(stats["energy"].get<double>(), 0.008368710955476165, 1e-6 * 0.008368710955476165);
 }
 
@@ -192,7 +172,7 @@ TEST_F(DeformCli, FailureKeepsAnExistingOutputFile) {
   write_text(dir + "/bad.json", "{");
   const CommandResult r = run_primo("deform " + dir + "/bad.json -o " + dir + "/keep.obj");
   EXPECT_NE(r.exit_code, 0);
-  EXPECT_EQ(read_file(dir + "/keep.obj"), "precious");
+  EXPECT_EQ(read_text(dir + "/keep.obj"), "precious");
 }
 
 TEST_F(DeformCli, StatisticsFailureRemovesTheMesh) {

@@ -7,8 +7,6 @@
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 
 #include "paint.h"
 #include "primo/error.h"
@@ -17,6 +15,10 @@
 #include "session.h"
 #include "session_replay.h"
 #include "test_support.h"
+
+using primo::test::CommandResult;
+using primo::test::read_text;
+using primo::test::run_primo;
 
 using namespace primo;
 using namespace primo::editor;
@@ -78,13 +80,6 @@ Recorded record_bar_session(const std::string& mesh_path) {
   frame();
   r.session = rec.stop(doc, t);
   return r;
-}
-
-std::string read_file(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
 }
 
 std::string error_of(const std::function<void()>& f) {
@@ -210,19 +205,6 @@ TEST(SessionReplay, IsDeterministicAndEndsWhereASolveFromRestEnds) {
 
 namespace {
 
-struct CommandResult {
-  int exit_code;
-  std::string err;
-};
-
-CommandResult run_primo(const std::string& arguments) {
-  const std::string dir = primo::test::temp_dir();
-  const std::string command =
-      std::string(PRIMO_EXECUTABLE) + " " + arguments + " >" + dir + "/out.txt 2>" + dir + "/err.txt";
-  const int status = std::system(command.c_str());
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, read_file(dir + "/err.txt")};
-}
-
 class ReplayCli : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -230,7 +212,7 @@ class ReplayCli : public ::testing::Test {
     Recorded r = record_bar_session(dir + "/bar.obj");
     save_mesh(*r.doc->mesh, dir + "/bar.obj");
     save_session(r.session, dir + "/pose.session.json");
-    text = read_file(dir + "/pose.session.json");
+    text = read_text(dir + "/pose.session.json");
   }
   size_t files_in(const std::string& d) {
     if (!fs::exists(d)) return 0;
@@ -253,7 +235,7 @@ TEST_F(ReplayCli, WritesTheFinalMeshAndFrames) {
   EXPECT_EQ(files_in(dir + "/frames"), size_t((frames + 3) / 4));
   const CommandResult b = run_primo("replay " + dir + "/pose.session.json -o " + dir + "/b.obj");
   ASSERT_EQ(b.exit_code, 0) << b.err;
-  EXPECT_EQ(read_file(dir + "/a.obj"), read_file(dir + "/b.obj"));  // bitwise the same
+  EXPECT_EQ(read_text(dir + "/a.obj"), read_text(dir + "/b.obj"));  // bitwise the same
 }
 
 TEST_F(ReplayCli, BadSessionWritesNothing) {
@@ -288,8 +270,8 @@ TEST_F(ReplayCli, SameResultWhateverTheLibrariesThreadCount) {
   const int status = std::system((env + PRIMO_EXECUTABLE + " replay " + dir + "/pose.session.json -o " + dir +
                                   "/c.obj > /dev/null 2>&1").c_str());
   ASSERT_EQ(status, 0);
-  EXPECT_EQ(read_file(dir + "/a.obj"), read_file(dir + "/b.obj"));
-  EXPECT_EQ(read_file(dir + "/a.obj"), read_file(dir + "/c.obj"));
+  EXPECT_EQ(read_text(dir + "/a.obj"), read_text(dir + "/b.obj"));
+  EXPECT_EQ(read_text(dir + "/a.obj"), read_text(dir + "/c.obj"));
 }
 
 TEST_F(ReplayCli, ReplaysOnAFinerVersionOfTheMesh) {

@@ -13,9 +13,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <map>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -30,6 +28,7 @@ namespace {
 using primo::Mesh;
 using primo::PolygonSoup;
 using primo::Vec3;
+using primo::test::read_text;
 using primo::test::shared_path;
 using primo::test::temp_dir;
 using primo::test::write_text;
@@ -60,13 +59,6 @@ std::map<int, int> degree_histogram(const Mesh& mesh) {
   std::map<int, int> histogram;
   for (auto f : mesh.faces()) ++histogram[int(f.valence())];
   return histogram;
-}
-
-std::string read_text(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
 }
 
 std::vector<std::string> folder_entries(const std::string& folder) {

@@ -1,9 +1,13 @@
 #include "test_support.h"
 
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <atomic>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <unistd.h>
+#include <sstream>
 
 namespace fs = std::filesystem;
 
@@ -31,6 +35,22 @@ std::string temp_dir() {
 void write_text(const std::string& path, const std::string& text) {
   std::ofstream out(path, std::ios::binary | std::ios::trunc);
   out << text;
+}
+
+std::string read_text(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+CommandResult run_primo(const std::string& arguments) {
+  const std::string dir = temp_dir();
+  const std::string command = std::string(PRIMO_EXECUTABLE) + " " + arguments + " >" + dir +
+                              "/out.txt 2>" + dir + "/err.txt";
+  const int status = std::system(command.c_str());
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, read_text(dir + "/out.txt"),
+          read_text(dir + "/err.txt")};
 }
 
 }  // namespace primo::test

@@ -1,5 +1,5 @@
 #pragma once
-// Helpers shared by the unit tests: paths to shipped data and temporary files.
+// Helpers shared by the unit tests: paths to shipped data, temporary files, running `primo`.
 
 #include <string>
 
@@ -14,6 +14,15 @@ bool exists(const std::string& path);
 std::string temp_dir();
 // Writes `text` to `path` (truncating).
 void write_text(const std::string& path, const std::string& text);
+// The whole file, byte for byte ("" when it cannot be read).
+std::string read_text(const std::string& path);
+
+// `primo ARGUMENTS` (the built executable) with its output captured.
+struct CommandResult {
+  int exit_code = -1;  // -1 when it did not exit normally
+  std::string out, err;
+};
+CommandResult run_primo(const std::string& arguments);
 
 }  // namespace primo::test
 
