@@ -166,10 +166,12 @@ void HierarchicalSolver::restrict_level(Level& level, const RigidSystem& finer,
     level.orientation[c] = finer_orientation
                                ? Mat3(finer_state[child].rotation * (*finer_orientation)[child])
                                : finer_state[child].rotation;
-    const Mat3& R = level.orientation[c];
-    body.metric_mean = R * level.rest_metric_mean[c];
-    body.metric_centered = R * level.rest_metric_centered[c] * R.transpose();
-    body.metric_pinned = R * level.rest_metric_pinned[c] * R.transpose();
+    if (!swept) {  // only the coarse Newton step measures motions in the metric
+      const Mat3& R = level.orientation[c];
+      body.metric_mean = R * level.rest_metric_mean[c];
+      body.metric_centered = R * level.rest_metric_centered[c] * R.transpose();
+      body.metric_pinned = R * level.rest_metric_pinned[c] * R.transpose();
+    }
     level.correction[c] = {Mat3::Identity(), body.rest_center};
   }
   on_two_threads(sys.couplings.size(), kParallelFrom, [&](size_t begin, size_t end) {
