@@ -69,6 +69,7 @@ Deformer::~Deformer() = default;
 
 void Deformer::problem_changed() {
   settled_ = false;
+  known_energy_.reset();
   // Accelerated cycles combine iterates of one fixed problem.
   if (hierarchical_) hierarchical_->restart_acceleration();
 }
@@ -84,7 +85,8 @@ Deformer::Deformer(Deformer&& other) noexcept
       settled_(other.settled_),
       settled_method_(other.settled_method_),
       settled_tolerance_(other.settled_tolerance_),
-      exact_newton_(other.exact_newton_) {
+      exact_newton_(other.exact_newton_),
+      known_energy_(other.known_energy_) {
   other.global_.reset();
   other.hierarchical_.reset();
 }
@@ -100,6 +102,7 @@ Deformer& Deformer::operator=(Deformer&& other) noexcept {
   settled_method_ = other.settled_method_;
   settled_tolerance_ = other.settled_tolerance_;
   exact_newton_ = other.exact_newton_;
+  known_energy_ = other.known_energy_;
   global_.reset();
   hierarchical_.reset();
   other.global_.reset();
@@ -137,6 +140,8 @@ void Deformer::reset() {
 void Deformer::set_handle_transform(int handle, const RigidTransform& transform) {
   if (handle < 0 || handle >= int(handles_.size())) throw Error("no such handle");
   handles_[handle].transform = transform;
+  std::optional<double> known = known_energy_;
+  if (known) *known -= body_energy(handle);
   problem_changed();
   const BodyState target = handle_state(handle);
   BodyState& s = state_[handle];
@@ -145,6 +150,20 @@ void Deformer::set_handle_transform(int handle, const RigidTransform& transform)
     case Fix::Position: s.position = target.position; break;
     case Fix::Orientation: s.rotation = target.rotation; break;
   }
+  if (known) known_energy_ = *known + body_energy(handle);
+}
+
+double Deformer::body_energy(int body) const {
+  double e = 0.0;
+  for (int k = system_.coupling_begin[body]; k < system_.coupling_begin[body + 1]; ++k) {
+    const RigidSystem::Coupling& c = system_.couplings[system_.body_couplings[k].first];
+    e += system_.coupling_energy(c, state_[c.body[0]], state_[c.body[1]]);
+  }
+  for (int k = system_.spring_begin[body]; k < system_.spring_begin[body + 1]; ++k) {
+    const RigidSystem::Spring& sp = system_.springs[system_.body_springs[k]];
+    e += sp.weight * (world_point(state_[sp.body], sp.local) - sp.target).squaredNorm();
+  }
+  return e;
 }
 
 void Deformer::set_force_offset(int force, const Vec3& target_offset) {
@@ -159,7 +178,7 @@ SolveReport Deformer::solve(const SolveOptions& options) {
   SolveReport report;
   const double diagonal = layer_.bounding_box_diagonal;
   const double energy_floor = 1e-14 * diagonal * diagonal;
-  double e = energy();
+  double e = energy();  // from the last solve when known: a drag frame skips a pass
   report.initial_energy = e;
   report.energy = e;
   if (settled_ && settled_method_ == options.method && options.tolerance >= settled_tolerance_) {
@@ -213,6 +232,7 @@ SolveReport Deformer::solve(const SolveOptions& options) {
     report.stop_reason = "energy floor";
   }
   report.energy = e;
+  known_energy_ = e;
   settled_ = report.converged;
   settled_method_ = options.method;
   settled_tolerance_ = options.tolerance;
