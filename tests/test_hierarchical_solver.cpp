@@ -333,7 +333,16 @@ TEST(HierarchicalSolver, AccelerationCutsCyclesAndKeepsTheMinimum) {
   std::cout << "[ metric   ] cylinder bend 90, 2400 quads: " << cycles[0] << " plain cycles, "
             << cycles[1] << " accelerated\n";
   EXPECT_LT(cycles[1] * 2, cycles[0]);
-  EXPECT_LT(max_distance(result[0], result[1]), 1e-4 * bounding_box_diagonal(s.mesh));
+  // Both at the flat global minimum (plain cycles converge slowly, so the stopping rule leaves
+  // them a little further from it).
+  Deformer flat(s.mesh, PrismParameters{}, s.handles);
+  SolveOptions exact;
+  exact.tolerance = 1e-12;
+  flat.solve(exact);
+  for (int accelerated : {0, 1})
+    EXPECT_LT(max_distance(result[accelerated], flat.vertex_positions()),
+              1e-4 * bounding_box_diagonal(s.mesh))
+        << (accelerated ? "accelerated" : "plain");
 }
 
 TEST(HierarchicalSolver, SpringsAndOrientationHandlesReachTheFlatMinimum) {

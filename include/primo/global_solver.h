@@ -39,6 +39,8 @@ struct GlobalSolverTimings {
   double line_search = 0.0;  // rigid updates and energy evaluations
   int factorizations = 0;
   int failed_factorizations = 0;  // not positive definite
+  double background_factorization = 0.0;  // on the background thread (not in the wall time)
+  int background_factorizations = 0;
   int energy_evaluations = 0;
 };
 
@@ -70,8 +72,23 @@ class GlobalSolver {
   // calls); a fresh one is made when it has none or its step does not lower the energy.
   GlobalStep iterate(std::vector<BodyState>& state, bool exact_hessian,
                      bool reuse_factorization = false);
+  // How a reusing caller's factors are refreshed: a factor serves its first step and at most
+  // `max_reuse` more (default: no limit), then the next step makes a fresh one. With
+  // `background_lag` > 0 (supernodal factorizations only) the fresh one is made on a background
+  // thread from the matrix of the step that found the factor spent, while steps go on with the
+  // old factor; it takes over `background_lag` steps later, waiting for the thread if needed. A
+  // step that fails with the old factor takes the new one at once. The takeover step is fixed,
+  // so the iterates do not depend on timing.
+  void set_factor_reuse(int max_reuse, int background_lag = 0);
+  // Frames (a rotation per body, owned by the caller and kept current) in which the bodies'
+  // motions are measured, e.g. the orientation of a coarse cluster's prisms. A reused factor
+  // is then applied turned by each body's rotation since its matrix was assembled: a pose
+  // that turned as a whole keeps an exact Newton step.
+  void set_body_frames(const std::vector<Mat3>* frames);
 
   int n_dofs() const;
+  // Floating-point operations of the last foreground supernodal factorization (0 before one).
+  double factorization_flops() const;
   const GlobalSolverTimings& timings() const;
   void reset_timings();
 

@@ -840,6 +840,9 @@ struct DragRun {
   Breakdown first_frame;
   Breakdown later_frames;  // sum over frames 2..N
   double energy_evaluation_seconds = 0.0;
+  int drag_factor_lag = 0;  // steps of the background refreshes during the drag
+  int foreground_factorizations = 0, background_factorizations = 0;  // during the drag
+  double background_factorization_seconds = 0.0;
   std::vector<int> level_bodies;  // hierarchical: bodies per level, fine first
   SolveReport converge;
   Breakdown converge_profile;
@@ -902,6 +905,12 @@ void run_frames(Deformer& deformer, const DragCase& c, const SolveOptions& base,
   }
   if (const HierarchicalSolver* h = deformer.hierarchical_solver())
     for (int l = 0; l < h->levels(); ++l) run.level_bodies.push_back(h->bodies(l));
+  if (const HierarchicalSolver* h = deformer.hierarchical_solver())
+    run.drag_factor_lag = h->drag_factor_lag();
+  const SolverClock after_drag = SolverClock::read(deformer);
+  run.foreground_factorizations = after_drag.newton.factorizations;
+  run.background_factorizations = after_drag.newton.background_factorizations;
+  run.background_factorization_seconds = after_drag.newton.background_factorization;
 
   // One pass over all joints, for reading "other": a hierarchical cycle makes one after its
   // sweeps (Deformer::solve carries the energy through handle moves instead of a pass).
@@ -1064,6 +1073,8 @@ int run_bench_drag(const BenchDragArguments& args) {
                      args.hierarchical.coarse_iterations != defaults.coarse_iterations ||
                      args.hierarchical.intermediate_cycles != defaults.intermediate_cycles ||
                      args.hierarchical.coarse_factor_reuse != defaults.coarse_factor_reuse ||
+                     args.hierarchical.drag_factor_reuse != defaults.drag_factor_reuse ||
+                     args.hierarchical.drag_factor_lag != defaults.drag_factor_lag ||
                      args.hierarchical.intermediate_relaxation != defaults.intermediate_relaxation ||
                      args.hierarchical.acceleration_history != defaults.acceleration_history;
   const nlohmann::json settings = {
@@ -1074,6 +1085,8 @@ int run_bench_drag(const BenchDragArguments& args) {
       {"coarse_iterations", args.hierarchical.coarse_iterations},
       {"intermediate_cycles", args.hierarchical.intermediate_cycles},
       {"coarse_factor_reuse", args.hierarchical.coarse_factor_reuse},
+      {"drag_factor_reuse", args.hierarchical.drag_factor_reuse},
+      {"drag_factor_lag", args.hierarchical.drag_factor_lag},
       {"intermediate_relaxation", args.hierarchical.intermediate_relaxation},
       {"acceleration_history", args.hierarchical.acceleration_history},
       {"core_defaults", !tuned}};
@@ -1081,12 +1094,21 @@ int run_bench_drag(const BenchDragArguments& args) {
     out["hierarchical_settings"] = settings;
     std::printf("           hierarchy: clusters of %d, coarsest <= %d bodies, %d fine sweeps, %d "
                 "intermediate sweeps x %d visits, %d coarse Newton iterations per cycle, a "
-                "coarse factorization reused up to %d times%s\n",
+                "coarse factorization reused up to %d times%s%s\n",
                 args.hierarchical.hierarchy.cluster_size,
                 args.hierarchical.hierarchy.coarsest_max_bodies,
                 args.hierarchical.sweeps_per_level, args.hierarchical.intermediate_sweeps,
                 args.hierarchical.intermediate_cycles, args.hierarchical.coarse_iterations,
-                args.hierarchical.coarse_factor_reuse, tuned ? " (NOT the core's defaults)" : "");
+                args.hierarchical.coarse_factor_reuse,
+                args.hierarchical.drag_factor_lag != 0
+                    ? ("; during a drag " + std::to_string(args.hierarchical.drag_factor_reuse) +
+                       " times, refreshed in the background" +
+                       (args.hierarchical.drag_factor_lag > 0
+                            ? " for " + std::to_string(args.hierarchical.drag_factor_lag) + " steps"
+                            : std::string()))
+                          .c_str()
+                    : "",
+                tuned ? " (NOT the core's defaults)" : "");
   }
   std::printf("\n");
   std::fflush(stdout);
@@ -1112,7 +1134,11 @@ int run_bench_drag(const BenchDragArguments& args) {
       std::printf("Hierarchy  %zu levels, bodies:", drag.level_bodies.size());
       for (size_t l = 0; l < drag.level_bodies.size(); ++l)
         std::printf("%s %d", l ? " ->" : "", drag.level_bodies[l]);
+      if (drag.drag_factor_lag > 0)
+        std::printf("; coarse factors refreshed in the background during the drag, taking over "
+                    "%d coarse steps later", drag.drag_factor_lag);
       std::printf("\n\n");
+      out["drag_factor_lag"] = drag.drag_factor_lag;
     }
     std::printf("Drag (%d frames; deformer setup %.3f s, not in the frames)\n", args.frames,
                 drag.setup_seconds);
@@ -1160,14 +1186,21 @@ int run_bench_drag(const BenchDragArguments& args) {
   if (later > 0) print_breakdown_row("per frame, 2..N", drag.later_frames.per(later), method);
   if (!args.drag_only) print_breakdown_row("converge (total)", drag.converge_profile, method);
   std::printf("  (one energy evaluation: %.2f ms; 'other' also holds building the solver on "
-              "first use)\n\n",
+              "first use)\n",
               1e3 * drag.energy_evaluation_seconds);
+  std::printf("  (factorizations during the drag: %d in the foreground, %d on a background thread "
+              "taking %.0f ms there, not counted above)\n\n",
+              drag.foreground_factorizations, drag.background_factorizations,
+              1e3 * drag.background_factorization_seconds);
   std::fflush(stdout);
   nlohmann::json profile;
   profile["first_frame_ms"] = drag.first_frame.to_json_ms();
   profile["per_frame_ms"] = drag.later_frames.per(later).to_json_ms();
   profile["per_frame_frames"] = later;
   profile["energy_evaluation_ms"] = 1e3 * drag.energy_evaluation_seconds;
+  profile["drag_foreground_factorizations"] = drag.foreground_factorizations;
+  profile["drag_background_factorizations"] = drag.background_factorizations;
+  profile["drag_background_factorization_ms"] = 1e3 * drag.background_factorization_seconds;
   if (!args.drag_only) profile["converge_ms"] = drag.converge_profile.to_json_ms();
 
   // 2: the final pose from rest.
@@ -1323,6 +1356,15 @@ Command register_bench(CLI::App& app) {
   drag->add_option("--coarse-factor-reuse", h.coarse_factor_reuse,
                    "Coarse Newton steps per numeric factorization, beyond the first")
       ->check(CLI::Range(0, 100000))
+      ->group(group);
+  drag->add_option("--drag-factor-reuse", h.drag_factor_reuse,
+                   "During a drag: coarse Newton steps per numeric factorization, beyond the first")
+      ->check(CLI::Range(0, 100000))
+      ->group(group);
+  drag->add_option("--drag-factor-lag", h.drag_factor_lag,
+                   "During a drag: coarse steps a background refactorization has before its "
+                   "factor takes over (-1: automatic, 0: refactorize in the foreground)")
+      ->check(CLI::Range(-1, 100000))
       ->group(group);
 
   return {bench, [engine, engine_args, drag, drag_args]() -> int {

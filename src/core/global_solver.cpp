@@ -7,6 +7,9 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <limits>
+#include <mutex>
+#include <thread>
 #include <unordered_map>
 
 #include <dlfcn.h>
@@ -50,27 +53,48 @@ void add_rotational_inertia(Eigen::Ref<Mat3> m, const Vec3& y, double w) {
 
 // OpenBLAS limited to the calling thread for a scope (when the BLAS in use is OpenBLAS; other
 // BLAS libraries are left alone). Its helper threads spin for a while after every call, which
-// on two cores takes them from our own threaded sweeps.
+// on two cores takes them from our own threaded sweeps. Scopes may overlap on several threads
+// (a background factorization and a solve): the first one in sets one thread, the last one out
+// restores the setting.
 class ScopedSingleThreadBlas {
  public:
   ScopedSingleThreadBlas() {
-    static const auto get = reinterpret_cast<int (*)()>(dlsym(RTLD_DEFAULT, "openblas_get_num_threads"));
-    static const auto set = reinterpret_cast<void (*)(int)>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"));
-    if (get && set) {
-      set_ = set;
-      previous_ = get();
-      if (previous_ != 1) set_(1);
+    std::lock_guard<std::mutex> lock(mutex());
+    if (holders()++ == 0 && get() && set()) {
+      previous() = get()();
+      if (previous() != 1) set()(1);
     }
   }
   ~ScopedSingleThreadBlas() {
-    if (set_ && previous_ != 1) set_(previous_);
+    std::lock_guard<std::mutex> lock(mutex());
+    if (--holders() == 0 && set() && previous() != 1) set()(previous());
   }
   ScopedSingleThreadBlas(const ScopedSingleThreadBlas&) = delete;
   ScopedSingleThreadBlas& operator=(const ScopedSingleThreadBlas&) = delete;
 
  private:
-  void (*set_)(int) = nullptr;
-  int previous_ = 1;
+  using Get = int (*)();
+  using Set = void (*)(int);
+  static Get get() {
+    static const auto f = reinterpret_cast<Get>(dlsym(RTLD_DEFAULT, "openblas_get_num_threads"));
+    return f;
+  }
+  static Set set() {
+    static const auto f = reinterpret_cast<Set>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"));
+    return f;
+  }
+  static std::mutex& mutex() {
+    static std::mutex m;
+    return m;
+  }
+  static int& holders() {
+    static int n = 0;
+    return n;
+  }
+  static int& previous() {
+    static int n = 1;
+    return n;
+  }
 };
 
 // Calls residual(y0, y1, r, w, point) for the four modes of a coupling in the given states
@@ -163,16 +187,55 @@ struct GlobalSolver::Impl {
   bool has_factor = false;
   bool factor_exact = false;
   GlobalSolverTimings timings;
-  Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> supernodal;
+  using SupernodalLLT = Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower>;
+  std::unique_ptr<SupernodalLLT> supernodal = std::make_unique<SupernodalLLT>();
   Eigen::CholmodSimplicialLLT<SparseMatrix, Eigen::Lower> simplicial;
 
+  // Refactorization on a background thread (supernodal only): once the factor in use has
+  // served `refresh_after` steps, the current matrix is factorized into `spare` while steps go
+  // on with the old factor; the new factor takes over `lag` steps later, waiting for the
+  // thread if needed. The handover happens at a fixed step, so results do not depend on timing.
+  int max_reuse = std::numeric_limits<int>::max();  // steps a factor serves after its first
+  struct Background {
+    int lag = 0;  // 0: off
+    std::unique_ptr<SupernodalLLT> spare;
+    bool spare_analyzed = false;
+    SparseMatrix matrix;  // what the thread factorizes (the pattern of `matrix`)
+    std::thread thread;
+    bool running = false;
+    int ready_at = 0;  // step count at which the new factor takes over
+    bool exact = false;
+    std::vector<Mat3> frames;  // the frames when its matrix was assembled
+    bool ok = false;         // written by the thread, read after join
+    double seconds = 0.0;    // written by the thread, read after join
+  } background;
+  double factorization_flops = 0.0;  // of the last supernodal factorization (CHOLMOD's count)
+  // Co-rotated reuse: the caller's per-body frames now, and as they were when the matrix of
+  // the factor in use was assembled. A reused factor is applied in the bodies' turned frames.
+  const std::vector<Mat3>* frames = nullptr;
+  std::vector<Mat3> factor_frames;
+  int steps = 0;            // iterations so far
+  int steps_on_factor = 0;  // steps taken with the factor in use (its first one included)
+
   Impl(const RigidSystem& s, Factorization f) : sys(s), factorization(f) {}
+  ~Impl() {
+    if (background.thread.joinable()) background.thread.join();
+  }
 
   void build_pattern();
   void assemble(const std::vector<BodyState>& state);
   void assemble_gradient(const std::vector<BodyState>& state);  // grad only
+  // The system matrix in `target` (the pattern of `matrix`), with the second-order rotation
+  // terms if asked and Levenberg-Marquardt damping in the bodies' metrics.
+  void fill(SparseMatrix& target, double damping, bool with_second_order,
+            const std::vector<BodyState>& state) const;
+  // Tiny damping for rank-deficient systems, and the scale of exact-Hessian damping.
+  std::pair<double, double> damping_and_scale() const;
   bool factorize(double damping, bool with_second_order, const std::vector<BodyState>& state);
+  void start_background(const std::vector<BodyState>& state, bool exact);  // after assemble()
+  void finish_background();  // waits for the thread; its factor takes over if it succeeded
   Eigen::VectorXd solve(const Eigen::VectorXd& rhs);
+  Eigen::VectorXd solve_corotated(const Eigen::VectorXd& rhs);  // with a reused factor
   std::vector<BodyState> apply(const std::vector<BodyState>& state, const Eigen::VectorXd& delta,
                                double lambda, bool exponential) const;
 };
@@ -238,14 +301,14 @@ void GlobalSolver::Impl::build_pattern() {
   grad.assign(nb, Vec6::Zero());
   off.assign(pairs.size(), Mat6::Zero());
 
-  supernodal.cholmod().print = 0;
+  supernodal->cholmod().print = 0;
   simplicial.cholmod().print = 0;
   if (factorization == Factorization::Automatic)
     factorization = n >= kSupernodalFromDofs ? Factorization::Supernodal : Factorization::Simplicial;
   if (n > 0) {
     if (factorization == Factorization::Supernodal ||
         factorization == Factorization::SupernodalOneThread)
-      supernodal.analyzePattern(matrix);
+      supernodal->analyzePattern(matrix);
     else
       simplicial.analyzePattern(matrix);
   }
@@ -317,10 +380,10 @@ void GlobalSolver::Impl::assemble_gradient(const std::vector<BodyState>& state) 
   }
 }
 
-bool GlobalSolver::Impl::factorize(double damping, bool with_second_order,
-                                   const std::vector<BodyState>& state) {
-  double* values = matrix.valuePtr();
-  std::fill(values, values + matrix.nonZeros(), 0.0);
+void GlobalSolver::Impl::fill(SparseMatrix& target, double damping, bool with_second_order,
+                              const std::vector<BodyState>& state) const {
+  double* values = target.valuePtr();
+  std::fill(values, values + target.nonZeros(), 0.0);
   for (int b = 0; b < sys.n_bodies(); ++b) {
     if (!active[b]) continue;
     Mat6 block = diag[b];
@@ -349,15 +412,37 @@ bool GlobalSolver::Impl::factorize(double damping, bool with_second_order,
     for (int k = 0; k < 36; ++k)
       if (slots[k] >= 0) values[slots[k]] += off[p](k / 6, k % 6);
   }
+}
+
+std::pair<double, double> GlobalSolver::Impl::damping_and_scale() const {
+  double trace_h = 0.0, trace_k = 0.0;
+  for (int b = 0; b < sys.n_bodies(); ++b) {
+    if (!active[b]) continue;
+    trace_h += diag[b].trace();
+    const auto& body = sys.bodies[b];
+    trace_k += 3.0 * body.metric_weight + 2.0 * body.metric_pinned.trace();
+  }
+  // Tiny relative damping: invisible on well-posed problems, enough to make rank-deficient
+  // ones factorizable. Raised when CHOLMOD still reports a non-positive pivot.
+  const double scale = trace_k > 0 ? std::max(trace_h, 1e-300) / trace_k : 0.0;
+  return {1e-10 * scale, scale};
+}
+
+bool GlobalSolver::Impl::factorize(double damping, bool with_second_order,
+                                   const std::vector<BodyState>& state) {
+  if (background.running) finish_background();  // `matrix` and the factors are ours again
+  fill(matrix, damping, with_second_order, state);
   const auto start = Clock::now();
   bool ok;
   if (factorization == Factorization::SupernodalOneThread) {
     ScopedSingleThreadBlas one_thread;
-    supernodal.factorize(matrix);
-    ok = supernodal.info() == Eigen::Success;
+    supernodal->factorize(matrix);
+    ok = supernodal->info() == Eigen::Success;
+    factorization_flops = supernodal->cholmod().fl;
   } else if (factorization == Factorization::Supernodal) {
-    supernodal.factorize(matrix);
-    ok = supernodal.info() == Eigen::Success;
+    supernodal->factorize(matrix);
+    ok = supernodal->info() == Eigen::Success;
+    factorization_flops = supernodal->cholmod().fl;
   } else {
     simplicial.factorize(matrix);
     ok = simplicial.info() == Eigen::Success;
@@ -367,15 +452,86 @@ bool GlobalSolver::Impl::factorize(double damping, bool with_second_order,
   if (!ok) ++timings.failed_factorizations;
   has_factor = ok;
   factor_exact = with_second_order;
+  steps_on_factor = 0;
+  if (frames) factor_frames = *frames;
   return ok;
+}
+
+void GlobalSolver::Impl::start_background(const std::vector<BodyState>& state, bool exact) {
+  Background& job = background;
+  if (!job.spare) {
+    job.spare = std::make_unique<SupernodalLLT>();
+    job.spare->cholmod().print = 0;
+    job.matrix = matrix;
+  }
+  const auto [damping, scale] = damping_and_scale();
+  job.exact = exact;
+  if (frames) job.frames = *frames;
+  fill(job.matrix, exact ? damping + exact_damping * scale : damping, exact, state);
+  job.running = true;
+  job.ready_at = steps + job.lag;
+  const bool one_thread = factorization == Factorization::SupernodalOneThread;
+  job.thread = std::thread([&job, one_thread] {
+    const auto start = Clock::now();
+    std::unique_ptr<ScopedSingleThreadBlas> scope;
+    if (one_thread) scope = std::make_unique<ScopedSingleThreadBlas>();
+    if (!job.spare_analyzed) {
+      job.spare->analyzePattern(job.matrix);
+      job.spare_analyzed = true;
+    }
+    job.spare->factorize(job.matrix);
+    job.ok = job.spare->info() == Eigen::Success;
+    job.seconds = seconds_since(start);
+  });
+}
+
+void GlobalSolver::Impl::finish_background() {
+  Background& job = background;
+  const auto start = Clock::now();
+  job.thread.join();
+  job.running = false;
+  timings.factorization += seconds_since(start);  // only the wait shows in the foreground
+  timings.background_factorization += job.seconds;
+  ++timings.background_factorizations;
+  if (!job.ok) {
+    ++timings.failed_factorizations;
+    return;
+  }
+  std::swap(supernodal, job.spare);  // the old factor's object is analyzed too
+  factor_frames.swap(job.frames);
+  has_factor = true;
+  factor_exact = job.exact;
+  steps_on_factor = 0;
+}
+
+Eigen::VectorXd GlobalSolver::Impl::solve_corotated(const Eigen::VectorXd& rhs) {
+  if (!frames || factor_frames.size() != frames->size()) return solve(rhs);
+  // The old matrix is approximately T H T^T in today's frames, T the bodies' turns since; so
+  // the step is T (old H)^-1 T^T rhs, each body's v and omega turned alike.
+  auto turned = [&](const Eigen::VectorXd& x, bool forward) {
+    Eigen::VectorXd y = x;
+    for (int b = 0; b < sys.n_bodies(); ++b) {
+      if (!active[b]) continue;
+      const Mat3 t = (*frames)[b] * factor_frames[b].transpose();
+      for (int part = 0; part < 2; ++part) {
+        const int* d = &dof[b][3 * part];
+        if (d[0] < 0) continue;  // masks keep or drop a whole v or omega
+        const Vec3 v(x[d[0]], x[d[1]], x[d[2]]);
+        const Vec3 w = forward ? Vec3(t * v) : Vec3(t.transpose() * v);
+        for (int k = 0; k < 3; ++k) y[d[k]] = w[k];
+      }
+    }
+    return y;
+  };
+  return turned(solve(turned(rhs, false)), true);
 }
 
 Eigen::VectorXd GlobalSolver::Impl::solve(const Eigen::VectorXd& rhs) {
   if (factorization == Factorization::SupernodalOneThread) {
     ScopedSingleThreadBlas one_thread;
-    return supernodal.solve(rhs);
+    return supernodal->solve(rhs);
   }
-  if (factorization == Factorization::Supernodal) return supernodal.solve(rhs);
+  if (factorization == Factorization::Supernodal) return supernodal->solve(rhs);
   return simplicial.solve(rhs);
 }
 
@@ -430,12 +586,28 @@ GlobalSolver::GlobalSolver(const RigidSystem& system, Factorization factorizatio
 GlobalSolver::~GlobalSolver() = default;
 
 int GlobalSolver::n_dofs() const { return impl_->n; }
+double GlobalSolver::factorization_flops() const { return impl_->factorization_flops; }
+
+void GlobalSolver::set_body_frames(const std::vector<Mat3>* frames) {
+  impl_->frames = frames;
+  impl_->factor_frames.clear();
+}
+
+void GlobalSolver::set_factor_reuse(int max_reuse, int background_lag) {
+  Impl& m = *impl_;
+  const bool supernodal = m.factorization == Factorization::Supernodal ||
+                          m.factorization == Factorization::SupernodalOneThread;
+  m.max_reuse = std::max(max_reuse, 0);
+  m.background.lag = supernodal ? std::max(background_lag, 0) : 0;
+}
 const GlobalSolverTimings& GlobalSolver::timings() const { return impl_->timings; }
 void GlobalSolver::reset_timings() { impl_->timings = {}; }
 
 GlobalStep GlobalSolver::iterate(std::vector<BodyState>& state, bool exact_hessian,
                                 bool reuse_factorization) {
   Impl& m = *impl_;
+  ++m.steps;
+  if (m.background.running && m.steps >= m.background.ready_at) m.finish_background();
   GlobalStep step;
   step.energy_before = m.sys.energy(state);
   step.energy_after = step.energy_before;
@@ -451,7 +623,7 @@ GlobalStep GlobalSolver::iterate(std::vector<BodyState>& state, bool exact_hessi
   // Solve with the current factor and halve the step until the energy drops.
   auto search = [&](bool exact, int max_halvings) {
     auto solve_start = Clock::now();
-    const Eigen::VectorXd delta = m.solve(rhs);
+    const Eigen::VectorXd delta = m.solve_corotated(rhs);
     m.timings.solve += seconds_since(solve_start);
     if (!delta.allFinite()) return false;
     const auto search_start = Clock::now();
@@ -481,13 +653,29 @@ GlobalStep GlobalSolver::iterate(std::vector<BodyState>& state, bool exact_hessi
   // from is positive definite), and needs only the gradient; a few halvings at most before
   // paying for a fresh one.
   auto phase = Clock::now();
-  if (reuse_factorization && m.has_factor) {
-    m.assemble_gradient(state);
-    m.timings.assembly += seconds_since(phase);
+  const bool spent = m.steps_on_factor > m.max_reuse;
+  if (reuse_factorization && m.has_factor && (!spent || m.background.lag > 0)) {
+    if (spent && !m.background.running) {
+      m.assemble(state);  // the matrix for the thread, and the gradient for this step
+      m.timings.assembly += seconds_since(phase);
+      m.start_background(state, exact_hessian);
+    } else {
+      m.assemble_gradient(state);
+      m.timings.assembly += seconds_since(phase);
+    }
     fill_rhs();
     if (search(m.factor_exact, 3)) {
       step.reused_factorization = true;
+      ++m.steps_on_factor;
       return step;
+    }
+    if (m.background.running) {  // the fresher factor now rather than a foreground one
+      m.finish_background();
+      if (m.has_factor && m.steps_on_factor == 0 && search(m.factor_exact, 3)) {
+        step.reused_factorization = true;
+        ++m.steps_on_factor;
+        return step;
+      }
     }
     phase = Clock::now();
   }
@@ -495,17 +683,7 @@ GlobalStep GlobalSolver::iterate(std::vector<BodyState>& state, bool exact_hessi
   m.assemble(state);
   m.timings.assembly += seconds_since(phase);
   fill_rhs();
-  double trace_h = 0.0, trace_k = 0.0;
-  for (int b = 0; b < m.sys.n_bodies(); ++b) {
-    if (!m.active[b]) continue;
-    trace_h += m.diag[b].trace();
-    const auto& body = m.sys.bodies[b];
-    trace_k += 3.0 * body.metric_weight + 2.0 * body.metric_pinned.trace();
-  }
-  // Tiny relative damping: invisible on well-posed problems, enough to make rank-deficient
-  // ones factorizable. Raised when CHOLMOD still reports a non-positive pivot.
-  double damping = trace_k > 0 ? 1e-10 * std::max(trace_h, 1e-300) / trace_k : 0.0;
-  const double scale = trace_k > 0 ? std::max(trace_h, 1e-300) / trace_k : 0.0;
+  auto [damping, scale] = m.damping_and_scale();
 
   // One step of the given kind: factorize, solve, halve the step until the energy drops.
   auto try_step = [&](bool exact) {
@@ -527,6 +705,7 @@ GlobalStep GlobalSolver::iterate(std::vector<BodyState>& state, bool exact_hessi
       if (!factored) return false;
     }
     const bool ok = search(exact, 40);
+    if (ok) ++m.steps_on_factor;
     if (exact) {
       if (ok && step.step_scale == 1.0)
         m.exact_damping = m.exact_damping < 1e-7 ? 0.0 : m.exact_damping / 10;

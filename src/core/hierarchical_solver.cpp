@@ -1,7 +1,10 @@
 #include "primo/hierarchical_solver.h"
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 
+#include "primo/horn.h"
 #include "primo/two_threads.h"
 
 namespace primo {
@@ -9,6 +12,14 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 constexpr size_t kParallelFrom = 20000;  // couplings or bodies worth a second thread
+constexpr int kMovingCycles = 2;  // cycles since the targets changed that count as a drag
+// Automatic drag_factor_lag: the factorization's flops over this many per fine body, within
+// [2, 16] steps. Measured on two cores with the factorization sharing them with the cycles:
+// 8 steps hide a 3e8-flop factorization behind a 29k-face drag (one coarse step per frame),
+// 2 to 4 steps behind a 240k-face one (two per frame); longer lags let the drag fall behind
+// (a factor 8 steps late: 6.5% above the minimum at 240k, against 4.4% at 2 steps).
+constexpr double kFlopsPerFineBodyStep = 1500.0;
+constexpr int kMinAutoLag = 2, kMaxAutoLag = 16;
 double seconds_since(Clock::time_point t) {
   return std::chrono::duration<double>(Clock::now() - t).count();
 }
@@ -134,12 +145,23 @@ HierarchicalSolver::HierarchicalSolver(const RigidSystem& fine, const Hierarchic
     finer_cluster_of = &cluster_of;
   }
   fine_plan_ = plan_sweep(fine);
-  if (!levels_.empty())
+  if (!levels_.empty()) {
     coarse_solver_ = std::make_unique<GlobalSolver>(levels_.back()->system,
                                                     GlobalSolver::Factorization::SupernodalOneThread);
+    // Clusters turn with their prisms during a drag; a reused factor follows them.
+    coarse_solver_->set_body_frames(&levels_.back()->orientation);
+  }
 }
 
 HierarchicalSolver::~HierarchicalSolver() = default;
+
+int HierarchicalSolver::drag_factor_lag() const {
+  if (options_.drag_factor_lag >= 0 || !coarse_solver_) return std::max(options_.drag_factor_lag, 0);
+  const double flops = coarse_solver_->factorization_flops();
+  if (flops <= 0.0) return 0;
+  const double steps = std::ceil(flops / (kFlopsPerFineBodyStep * fine_.n_bodies()));
+  return int(std::clamp(steps, double(kMinAutoLag), double(kMaxAutoLag)));
+}
 
 int HierarchicalSolver::bodies(int level) const {
   return level == 0 ? fine_.n_bodies() : levels_[level - 1]->system.n_bodies();
@@ -158,15 +180,26 @@ void HierarchicalSolver::restrict_level(Level& level, const RigidSystem& finer,
     weight[level.parent_of[b]] += level.child_weight[b];
   }
   level.correction.resize(n);
+  auto child_orientation = [&](int child) {
+    return finer_orientation ? Mat3(finer_state[child].rotation * (*finer_orientation)[child])
+                             : finer_state[child].rotation;
+  };
+  // The coarsest level's orientations are its clusters' mean rotations: they orient the
+  // metric of the coarse Newton step and turn its reused factors. Elsewhere one child's
+  // rotation is enough (they only pass on to the next coarser level).
+  std::vector<Mat3> rotation_sum;
+  if (!swept) {
+    rotation_sum.assign(n, Mat3::Zero());
+    for (int b = 0; b < finer.n_bodies(); ++b)
+      rotation_sum[level.parent_of[b]] += level.child_weight[b] * child_orientation(b);
+  }
   for (int c = 0; c < n; ++c) {
     RigidSystem::Body& body = sys.bodies[c];
     body.rest_center = center[c] / weight[c];
-    // The cluster's prisms have moved; orient its rest metric by one of them.
-    const int child = level.representative_child[c];
-    level.orientation[c] = finer_orientation
-                               ? Mat3(finer_state[child].rotation * (*finer_orientation)[child])
-                               : finer_state[child].rotation;
+    // The cluster's prisms have moved; orient its rest metric by them.
+    level.orientation[c] = child_orientation(level.representative_child[c]);
     if (!swept) {  // only the coarse Newton step measures motions in the metric
+      level.orientation[c] = horn_rotation(rotation_sum[c].transpose(), level.orientation[c]);
       const Mat3& R = level.orientation[c];
       body.metric_mean = R * level.rest_metric_mean[c];
       body.metric_centered = R * level.rest_metric_centered[c] * R.transpose();
@@ -217,10 +250,17 @@ void HierarchicalSolver::solve_level(int l) {
   Level& level = *levels_[l];
   auto t = Clock::now();
   if (l + 1 == int(levels_.size())) {
+    // While targets move (a drag: they change before every cycle), spent factors are refreshed
+    // in the background so that no frame stops for a factorization; once they stay put, in
+    // the foreground, where a fresh factor pays off at once.
+    const bool moving = cycles_since_restart_ <= kMovingCycles && drag_factor_lag() > 0;
+    if (moving)
+      coarse_solver_->set_factor_reuse(options_.drag_factor_reuse, drag_factor_lag());
+    else
+      coarse_solver_->set_factor_reuse(options_.coarse_factor_reuse, 0);
     for (int it = 0; it < options_.coarse_iterations; ++it) {
-      const bool reuse = coarse_steps_on_factor_ < options_.coarse_factor_reuse;
-      const GlobalStep step = coarse_solver_->iterate(level.correction, coarse_exact_, reuse);
-      coarse_steps_on_factor_ = step.reused_factorization ? coarse_steps_on_factor_ + 1 : 0;
+      const GlobalStep step =
+          coarse_solver_->iterate(level.correction, coarse_exact_, options_.coarse_factor_reuse > 0);
       coarse_exact_ = options_.exact_hessian_below > 0 && step.decreased &&
                       step.step_scale == 1.0 &&
                       step.energy_before - step.energy_after <
@@ -249,7 +289,8 @@ void HierarchicalSolver::solve_level(int l) {
 double HierarchicalSolver::cycle(std::vector<BodyState>& fine_state) {
   // The first cycle after a restart is not recorded: a drag updates the targets before every
   // cycle, and would pay for bookkeeping it can never use.
-  const bool accelerate = acceleration_.history() > 0 && cycles_since_restart_++ > 0;
+  const bool accelerate = acceleration_.history() > 0 && cycles_since_restart_ > 0;
+  ++cycles_since_restart_;
   if (accelerate) cycle_input_ = fine_state;
   double energy = plain_cycle(fine_state);
   if (accelerate) {

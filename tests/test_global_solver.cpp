@@ -1,0 +1,123 @@
+// Global Newton matching's reuse of factorizations: how long a factor serves, refreshing it
+// on a background thread, and turning a reused factor with the bodies.
+
+#include "primo/global_solver.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+
+#include "primo/deformer.h"
+#include "primo/mesh_generators.h"
+#include "test_support.h"
+
+using namespace primo;
+using primo::test::faces_where;
+
+namespace {
+
+// A 16 x 24 quad cylinder bent 90 degrees between its fixed bottom and top bands.
+Deformer bent_cylinder() {
+  const double length = 2.0;
+  const Mesh mesh = make_cylinder(0.25, length, 16, 24, FaceShape::Quads);
+  const double band = length / 24;
+  Handle bottom{"bottom", faces_where(mesh, [&](const Vec3& p) { return p.y() < band; }), Fix::All, {}};
+  Handle top{"top", faces_where(mesh, [&](const Vec3& p) { return p.y() > length - band; }), Fix::All, {}};
+  const double rho = length / (M_PI / 2);
+  top.transform = make_rigid_transform(Vec3(rho, rho - length, 0), Vec3::UnitZ(), -90.0, Vec3(0, length, 0));
+  return Deformer(mesh, PrismParameters{}, {bottom, top});
+}
+
+double max_difference(const std::vector<BodyState>& a, const std::vector<BodyState>& b) {
+  double d = 0.0;
+  for (size_t i = 0; i < a.size(); ++i)
+    d = std::max({d, (a[i].position - b[i].position).norm(), (a[i].rotation - b[i].rotation).norm()});
+  return d;
+}
+
+// Runs `steps` reusing iterations; returns the final state.
+std::vector<BodyState> reusing_run(const RigidSystem& system, std::vector<BodyState> state, int steps,
+                                   int max_reuse, int lag, GlobalSolverTimings* timings) {
+  GlobalSolver solver(system, GlobalSolver::Factorization::SupernodalOneThread);
+  solver.set_factor_reuse(max_reuse, lag);
+  double energy = system.energy(state);
+  for (int k = 0; k < steps; ++k) {
+    const GlobalStep step = solver.iterate(state, false, true);
+    EXPECT_TRUE(step.decreased) << "step " << k;
+    EXPECT_LT(step.energy_after, energy) << "step " << k;
+    energy = step.energy_after;
+  }
+  *timings = solver.timings();
+  return state;
+}
+
+}  // namespace
+
+TEST(GlobalSolver, AFactorServesAtMostItsStepsAndThenAFreshOneIsMade) {
+  Deformer d = bent_cylinder();
+  GlobalSolverTimings t;
+  reusing_run(d.system(), d.body_states(), 12, 3, 0, &t);
+  EXPECT_EQ(t.factorizations, 3);  // steps 1, 5 and 9 make one; the others reuse it
+  EXPECT_EQ(t.background_factorizations, 0);
+}
+
+TEST(GlobalSolver, BackgroundRefreshesDescendAndDoNotDependOnTiming) {
+  Deformer d = bent_cylinder();
+  Deformer reference = bent_cylinder();
+  SolveOptions exact;
+  exact.tolerance = 1e-12;
+  exact.max_iterations = 200;
+  const double minimum = reference.solve(exact).energy;
+
+  GlobalSolverTimings first, second;
+  const std::vector<BodyState> a = reusing_run(d.system(), d.body_states(), 30, 3, 2, &first);
+  const std::vector<BodyState> b = reusing_run(d.system(), d.body_states(), 30, 3, 2, &second);
+  EXPECT_EQ(first.factorizations, 1);  // only the first one is made in the foreground
+  EXPECT_EQ(first.background_factorizations, 4);  // one started every 6 steps; the fifth still runs
+  EXPECT_EQ(first.background_factorizations, second.background_factorizations);
+  // The threads finish at different times in the two runs; the factors take over at the same
+  // steps, so the iterates are the same to the last bit.
+  EXPECT_EQ(max_difference(a, b), 0.0);
+  EXPECT_LT(d.system().energy(a), minimum * (1 + 1e-6));
+}
+
+TEST(GlobalSolver, AReusedFactorTurnsWithTheBodies) {
+  // A state part way to the minimum, and the same state turned as a whole: the problem is the
+  // same up to the turn, so a factor made before the turn, turned with the bodies, must give
+  // the fresh Newton step of the turned state.
+  Deformer d = bent_cylinder();
+  const RigidSystem& system = d.system();
+  std::vector<BodyState> before = d.body_states();
+  {
+    GlobalSolver warm(system);
+    for (int k = 0; k < 3; ++k) warm.iterate(before, false);
+  }
+  const Mat3 turn = Eigen::AngleAxisd(0.7, Vec3(1, 2, 3).normalized()).toRotationMatrix();
+  std::vector<BodyState> turned = before;
+  for (BodyState& s : turned) s = {turn * s.rotation, turn * s.position};
+  ASSERT_NEAR(system.energy(turned), system.energy(before), 1e-12 * system.energy(before));
+
+  std::vector<Mat3> frames(system.n_bodies(), Mat3::Identity());
+  GlobalSolver reused(system, GlobalSolver::Factorization::SupernodalOneThread);
+  reused.set_body_frames(&frames);
+  std::vector<BodyState> scratch = before;
+  reused.iterate(scratch, false);  // the factor of `before`
+  for (Mat3& f : frames) f = turn;
+  std::vector<BodyState> from_reused = turned;
+  const GlobalStep step = reused.iterate(from_reused, false, true);
+  ASSERT_TRUE(step.reused_factorization);
+
+  GlobalSolver fresh(system, GlobalSolver::Factorization::SupernodalOneThread);
+  std::vector<BodyState> from_fresh = turned;
+  fresh.iterate(from_fresh, false);
+  EXPECT_LT(max_difference(from_reused, from_fresh), 1e-9);
+
+  // Without the frames the old factor is applied unturned: a different, worse step.
+  GlobalSolver unturned(system, GlobalSolver::Factorization::SupernodalOneThread);
+  scratch = before;
+  unturned.iterate(scratch, false);
+  std::vector<BodyState> from_unturned = turned;
+  unturned.iterate(from_unturned, false, true);
+  EXPECT_GT(max_difference(from_unturned, from_fresh), 1e-4);
+  EXPECT_GT(system.energy(from_unturned), system.energy(from_fresh));
+}
