@@ -205,6 +205,10 @@ struct GlobalSolver::Impl {
     bool running = false;
     int ready_at = 0;  // step count at which the new factor takes over
     bool exact = false;
+    bool exact_failed = false;  // the last exact-Hessian factor was not positive definite
+    // A Gauss-Newton factor failed too: the next refresh is made in the foreground, which
+    // raises the damping until it succeeds.
+    bool foreground_next = false;
     std::vector<Mat3> frames;  // the frames when its matrix was assembled
     bool ok = false;         // written by the thread, read after join
     double seconds = 0.0;    // written by the thread, read after join
@@ -453,6 +457,7 @@ bool GlobalSolver::Impl::factorize(double damping, bool with_second_order,
   has_factor = ok;
   factor_exact = with_second_order;
   steps_on_factor = 0;
+  if (ok) background.foreground_next = false;
   if (frames) factor_frames = *frames;
   return ok;
 }
@@ -465,9 +470,9 @@ void GlobalSolver::Impl::start_background(const std::vector<BodyState>& state, b
     job.matrix = matrix;
   }
   const auto [damping, scale] = damping_and_scale();
-  job.exact = exact;
+  job.exact = exact && !job.exact_failed;  // after an indefinite one, Gauss-Newton
   if (frames) job.frames = *frames;
-  fill(job.matrix, exact ? damping + exact_damping * scale : damping, exact, state);
+  fill(job.matrix, job.exact ? damping + exact_damping * scale : damping, job.exact, state);
   job.running = true;
   job.ready_at = steps + job.lag;
   const bool one_thread = factorization == Factorization::SupernodalOneThread;
@@ -493,6 +498,8 @@ void GlobalSolver::Impl::finish_background() {
   timings.factorization += seconds_since(start);  // only the wait shows in the foreground
   timings.background_factorization += job.seconds;
   ++timings.background_factorizations;
+  job.exact_failed = !job.ok && job.exact;
+  job.foreground_next = !job.ok && !job.exact;
   if (!job.ok) {
     ++timings.failed_factorizations;
     return;
@@ -654,7 +661,8 @@ GlobalStep GlobalSolver::iterate(std::vector<BodyState>& state, bool exact_hessi
   // paying for a fresh one.
   auto phase = Clock::now();
   const bool spent = m.steps_on_factor > m.max_reuse;
-  if (reuse_factorization && m.has_factor && (!spent || m.background.lag > 0)) {
+  const bool in_background = m.background.lag > 0 && !m.background.foreground_next;
+  if (reuse_factorization && m.has_factor && (!spent || in_background)) {
     if (spent && !m.background.running) {
       m.assemble(state);  // the matrix for the thread, and the gradient for this step
       m.timings.assembly += seconds_since(phase);
