@@ -17,7 +17,7 @@ constexpr int kMovingCycles = 2;  // cycles since the targets changed that count
 // [2, 16] steps. Measured on two cores with the factorization sharing them with the cycles:
 // 8 steps hide a 3e8-flop factorization behind a 29k-face drag (one coarse step per frame),
 // 2 to 4 steps behind a 240k-face one (two per frame); longer lags let the drag fall behind
-// (a factor 8 steps late: 6.5% above the minimum at 240k, against 4.4% at 2 steps).
+// (factors serving 8 steps at 240k: 6.5% above the minimum with a lag of 8, 4.4% with 2).
 constexpr double kFlopsPerFineBodyStep = 1500.0;
 constexpr int kMinAutoLag = 2, kMaxAutoLag = 16;
 double seconds_since(Clock::time_point t) {
