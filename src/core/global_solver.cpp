@@ -9,6 +9,7 @@
 #include <cmath>
 #include <limits>
 #include <mutex>
+#include <system_error>
 #include <thread>
 #include <unordered_map>
 
@@ -476,18 +477,27 @@ void GlobalSolver::Impl::start_background(const std::vector<BodyState>& state, b
   job.running = true;
   job.ready_at = steps + job.lag;
   const bool one_thread = factorization == Factorization::SupernodalOneThread;
-  job.thread = std::thread([&job, one_thread] {
-    const auto start = Clock::now();
-    std::unique_ptr<ScopedSingleThreadBlas> scope;
-    if (one_thread) scope = std::make_unique<ScopedSingleThreadBlas>();
-    if (!job.spare_analyzed) {
-      job.spare->analyzePattern(job.matrix);
-      job.spare_analyzed = true;
-    }
-    job.spare->factorize(job.matrix);
-    job.ok = job.spare->info() == Eigen::Success;
-    job.seconds = seconds_since(start);
-  });
+  try {
+    job.thread = std::thread([&job, one_thread] {
+      const auto start = Clock::now();
+      job.ok = false;
+      try {  // nothing may escape a thread (out of memory: the foreground refactorizes)
+        std::unique_ptr<ScopedSingleThreadBlas> scope;
+        if (one_thread) scope = std::make_unique<ScopedSingleThreadBlas>();
+        if (!job.spare_analyzed) {
+          job.spare->analyzePattern(job.matrix);
+          job.spare_analyzed = true;
+        }
+        job.spare->factorize(job.matrix);
+        job.ok = job.spare->info() == Eigen::Success;
+      } catch (...) {
+      }
+      job.seconds = seconds_since(start);
+    });
+  } catch (const std::system_error&) {  // no thread to be had: refresh in the foreground
+    job.running = false;
+    job.foreground_next = true;
+  }
 }
 
 void GlobalSolver::Impl::finish_background() {
