@@ -52,14 +52,15 @@ void add_rotational_inertia(Eigen::Ref<Mat3> m, const Vec3& y, double w) {
   m.diagonal().array() += w * y.squaredNorm();
 }
 
-// OpenBLAS limited to the calling thread for a scope (when the BLAS in use is OpenBLAS; other
-// BLAS libraries are left alone). Its helper threads spin for a while after every call, which
+// OpenBLAS limited to the calling thread for a scope, when `active` (and the BLAS in use is
+// OpenBLAS; other BLAS libraries are left alone). Its helper threads spin for a while after every call, which
 // on two cores takes them from our own threaded sweeps. Scopes may overlap on several threads
 // (a background factorization and a solve): the first one in sets one thread, the last one out
 // restores the setting.
 class ScopedSingleThreadBlas {
  public:
-  ScopedSingleThreadBlas() {
+  explicit ScopedSingleThreadBlas(bool active) : active_(active) {
+    if (!active_) return;
     std::lock_guard<std::mutex> lock(mutex());
     if (holders()++ == 0 && get() && set()) {
       previous() = get()();
@@ -67,6 +68,7 @@ class ScopedSingleThreadBlas {
     }
   }
   ~ScopedSingleThreadBlas() {
+    if (!active_) return;
     std::lock_guard<std::mutex> lock(mutex());
     if (--holders() == 0 && set() && previous() != 1) set()(previous());
   }
@@ -96,6 +98,7 @@ class ScopedSingleThreadBlas {
     static int n = 1;
     return n;
   }
+  bool active_;
 };
 
 // Calls residual(y0, y1, r, w, point) for the four modes of a coupling in the given states
@@ -192,11 +195,11 @@ struct GlobalSolver::Impl {
   std::unique_ptr<SupernodalLLT> supernodal = std::make_unique<SupernodalLLT>();
   Eigen::CholmodSimplicialLLT<SparseMatrix, Eigen::Lower> simplicial;
 
-  // Refactorization on a background thread (supernodal only): once the factor in use has
-  // served `refresh_after` steps, the current matrix is factorized into `spare` while steps go
-  // on with the old factor; the new factor takes over `lag` steps later, waiting for the
-  // thread if needed. The handover happens at a fixed step, so results do not depend on timing.
   int max_reuse = std::numeric_limits<int>::max();  // steps a factor serves after its first
+  // Refactorization on a background thread (supernodal only): once the factor in use has
+  // served its steps, the current matrix is factorized into `spare` while steps go on with
+  // the old factor; the new factor takes over `lag` steps later, waiting for the thread if
+  // needed. The handover happens at a fixed step, so results do not depend on timing.
   struct Background {
     int lag = 0;  // 0: off
     std::unique_ptr<SupernodalLLT> spare;
@@ -223,6 +226,11 @@ struct GlobalSolver::Impl {
   int steps_on_factor = 0;  // steps taken with the factor in use (its first one included)
 
   Impl(const RigidSystem& s, Factorization f) : sys(s), factorization(f) {}
+  bool supernodal_kind() const {
+    return factorization == Factorization::Supernodal ||
+           factorization == Factorization::SupernodalOneThread;
+  }
+  bool one_blas_thread() const { return factorization == Factorization::SupernodalOneThread; }
   ~Impl() {
     if (background.thread.joinable()) background.thread.join();
   }
@@ -311,8 +319,7 @@ void GlobalSolver::Impl::build_pattern() {
   if (factorization == Factorization::Automatic)
     factorization = n >= kSupernodalFromDofs ? Factorization::Supernodal : Factorization::Simplicial;
   if (n > 0) {
-    if (factorization == Factorization::Supernodal ||
-        factorization == Factorization::SupernodalOneThread)
+    if (supernodal_kind())
       supernodal->analyzePattern(matrix);
     else
       simplicial.analyzePattern(matrix);
@@ -439,12 +446,8 @@ bool GlobalSolver::Impl::factorize(double damping, bool with_second_order,
   fill(matrix, damping, with_second_order, state);
   const auto start = Clock::now();
   bool ok;
-  if (factorization == Factorization::SupernodalOneThread) {
-    ScopedSingleThreadBlas one_thread;
-    supernodal->factorize(matrix);
-    ok = supernodal->info() == Eigen::Success;
-    factorization_flops = supernodal->cholmod().fl;
-  } else if (factorization == Factorization::Supernodal) {
+  if (supernodal_kind()) {
+    ScopedSingleThreadBlas scope(one_blas_thread());
     supernodal->factorize(matrix);
     ok = supernodal->info() == Eigen::Success;
     factorization_flops = supernodal->cholmod().fl;
@@ -476,14 +479,13 @@ void GlobalSolver::Impl::start_background(const std::vector<BodyState>& state, b
   fill(job.matrix, job.exact ? damping + exact_damping * scale : damping, job.exact, state);
   job.running = true;
   job.ready_at = steps + job.lag;
-  const bool one_thread = factorization == Factorization::SupernodalOneThread;
+  const bool one_thread = one_blas_thread();
   try {
     job.thread = std::thread([&job, one_thread] {
       const auto start = Clock::now();
       job.ok = false;
       try {  // nothing may escape a thread (out of memory: the foreground refactorizes)
-        std::unique_ptr<ScopedSingleThreadBlas> scope;
-        if (one_thread) scope = std::make_unique<ScopedSingleThreadBlas>();
+        ScopedSingleThreadBlas scope(one_thread);
         if (!job.spare_analyzed) {
           job.spare->analyzePattern(job.matrix);
           job.spare_analyzed = true;
@@ -544,12 +546,9 @@ Eigen::VectorXd GlobalSolver::Impl::solve_corotated(const Eigen::VectorXd& rhs) 
 }
 
 Eigen::VectorXd GlobalSolver::Impl::solve(const Eigen::VectorXd& rhs) {
-  if (factorization == Factorization::SupernodalOneThread) {
-    ScopedSingleThreadBlas one_thread;
-    return supernodal->solve(rhs);
-  }
-  if (factorization == Factorization::Supernodal) return supernodal->solve(rhs);
-  return simplicial.solve(rhs);
+  if (!supernodal_kind()) return simplicial.solve(rhs);
+  ScopedSingleThreadBlas scope(one_blas_thread());
+  return supernodal->solve(rhs);
 }
 
 std::vector<BodyState> GlobalSolver::Impl::apply(const std::vector<BodyState>& state,
@@ -612,10 +611,8 @@ void GlobalSolver::set_body_frames(const std::vector<Mat3>* frames) {
 
 void GlobalSolver::set_factor_reuse(int max_reuse, int background_lag) {
   Impl& m = *impl_;
-  const bool supernodal = m.factorization == Factorization::Supernodal ||
-                          m.factorization == Factorization::SupernodalOneThread;
   m.max_reuse = std::max(max_reuse, 0);
-  m.background.lag = supernodal ? std::max(background_lag, 0) : 0;
+  m.background.lag = m.supernodal_kind() ? std::max(background_lag, 0) : 0;
 }
 const GlobalSolverTimings& GlobalSolver::timings() const { return impl_->timings; }
 void GlobalSolver::reset_timings() { impl_->timings = {}; }
@@ -670,37 +667,38 @@ GlobalStep GlobalSolver::iterate(std::vector<BodyState>& state, bool exact_hessi
   // from is positive definite), and needs only the gradient; a few halvings at most before
   // paying for a fresh one.
   auto phase = Clock::now();
+  bool assembled = false;  // the full system of `state` (not only its gradient)
   const bool spent = m.steps_on_factor > m.max_reuse;
   const bool in_background = m.background.lag > 0 && !m.background.foreground_next;
   if (reuse_factorization && m.has_factor && (!spent || in_background)) {
     if (spent && !m.background.running) {
       m.assemble(state);  // the matrix for the thread, and the gradient for this step
-      m.timings.assembly += seconds_since(phase);
+      assembled = true;
       m.start_background(state, exact_hessian);
     } else {
       m.assemble_gradient(state);
-      m.timings.assembly += seconds_since(phase);
     }
+    m.timings.assembly += seconds_since(phase);
     fill_rhs();
-    if (search(m.factor_exact, 3)) {
+    auto reused_step = [&] {
+      if (!search(m.factor_exact, 3)) return false;
       step.reused_factorization = true;
       ++m.steps_on_factor;
-      return step;
-    }
+      return true;
+    };
+    if (reused_step()) return step;
     if (m.background.running) {  // the fresher factor now rather than a foreground one
       m.finish_background();
-      if (m.has_factor && m.steps_on_factor == 0 && search(m.factor_exact, 3)) {
-        step.reused_factorization = true;
-        ++m.steps_on_factor;
-        return step;
-      }
+      if (m.has_factor && m.steps_on_factor == 0 && reused_step()) return step;
     }
     phase = Clock::now();
   }
 
-  m.assemble(state);
-  m.timings.assembly += seconds_since(phase);
-  fill_rhs();
+  if (!assembled) {
+    m.assemble(state);
+    m.timings.assembly += seconds_since(phase);
+    fill_rhs();
+  }
   auto [damping, scale] = m.damping_and_scale();
 
   // One step of the given kind: factorize, solve, halve the step until the energy drops.
