@@ -7,6 +7,9 @@
 
 namespace primo {
 
+// Bodies or joints worth a second thread for per-item work of a few hundred flops.
+inline constexpr size_t kSecondThreadFrom = 20000;
+
 // Calls body(begin, end) on [0, n/2) and [n/2, n) on two threads when n >= min_parallel,
 // otherwise body(0, n) on the calling thread. The halves are fixed, so results that depend on
 // the split (sums) are reproducible.

@@ -9,7 +9,6 @@ namespace primo {
 namespace {
 
 constexpr int kEmbedding = 12;  // rotation (9) and position (3)
-constexpr size_t kParallelFrom = 20000;  // bodies worth a second thread
 
 void embed(const BodyState& s, double* out) {
   for (int k = 0; k < 9; ++k) out[k] = s.rotation(k % 3, k / 3);
@@ -32,7 +31,7 @@ std::vector<BodyState> AndersonAcceleration::propose(const std::vector<BodyState
   const size_t n_bodies = image.size(), n = n_bodies * kEmbedding;
   // Image g = G(x) and residual f = G(x) - x, embedded.
   std::vector<double> g(n), f(n);
-  on_two_threads(n_bodies, kParallelFrom, [&](size_t begin, size_t end) {
+  on_two_threads(n_bodies, kSecondThreadFrom, [&](size_t begin, size_t end) {
     double x[kEmbedding];
     for (size_t b = begin; b < end; ++b) {
       embed(image[b], &g[b * kEmbedding]);
@@ -44,7 +43,7 @@ std::vector<BodyState> AndersonAcceleration::propose(const std::vector<BodyState
   if (last_residual_.size() == n) {
     // The last residual and image become the newest differences (in place: memory is
     // 2 x (history + 1) state vectors).
-    on_two_threads(n, kParallelFrom * kEmbedding, [&](size_t begin, size_t end) {
+    on_two_threads(n, kSecondThreadFrom * kEmbedding, [&](size_t begin, size_t end) {
       for (size_t i = begin; i < end; ++i) {
         last_residual_[i] = f[i] - last_residual_[i];
         last_image_[i] = g[i] - last_image_[i];
@@ -69,7 +68,7 @@ std::vector<BodyState> AndersonAcceleration::propose(const std::vector<BodyState
     // the right-hand side dF^T f of the least-squares problem min |f - dF theta|.
     const std::vector<double>& newest = delta_residual_.back();
     double sums[2][2 * 64] = {};  // per thread: m column entries, then m right-hand sides
-    on_two_threads(n, kParallelFrom * kEmbedding, [&](size_t begin, size_t end) {
+    on_two_threads(n, kSecondThreadFrom * kEmbedding, [&](size_t begin, size_t end) {
       double* s = sums[begin == 0 ? 0 : 1];
       for (int a = 0; a < m; ++a) {
         const double* da = delta_residual_[a].data();
@@ -93,7 +92,7 @@ std::vector<BodyState> AndersonAcceleration::propose(const std::vector<BodyState
     regularized.diagonal().array() += 1e-10 * gram_.trace() / m + 1e-300;
     const Eigen::VectorXd theta = regularized.ldlt().solve(rhs);
     if (theta.allFinite()) {
-      on_two_threads(n_bodies, kParallelFrom, [&](size_t begin, size_t end) {
+      on_two_threads(n_bodies, kSecondThreadFrom, [&](size_t begin, size_t end) {
         double x[kEmbedding];
         for (size_t b = begin; b < end; ++b) {
           const size_t at = b * kEmbedding;

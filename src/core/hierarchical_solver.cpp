@@ -11,7 +11,6 @@ namespace primo {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-constexpr size_t kParallelFrom = 20000;  // couplings or bodies worth a second thread
 constexpr int kMovingCycles = 2;  // cycles since the targets changed that count as a drag
 // Automatic drag_factor_lag: the factorization's flops over this many per fine body, within
 // [2, 16] steps. Measured on two cores with the factorization sharing them with the cycles:
@@ -31,10 +30,12 @@ struct HierarchicalSolver::Level {
   std::vector<int> parent_of;      // body of the next finer level (or fine body) -> cluster
   std::vector<int> coupling_parent;  // level coupling -> same joint's coupling one level finer
   std::vector<double> child_weight;  // faces of each body of the next finer level
-  // The metric of a cluster is its rest metric turned by the rotation of a representative
-  // fine body (its largest), found through the body of the next finer level that holds it.
+  // A cluster's orientation at restriction: on the coarsest level the mean rotation of its
+  // prisms (it turns the rest metric and the reused coarse factors), elsewhere the rotation of
+  // a representative fine body (its largest), found through the body of the next finer level
+  // that holds it; it also starts Horn's projection for the mean.
   std::vector<int> representative_child;  // cluster -> body of the next finer level
-  std::vector<Mat3> orientation;          // cluster -> representative's rotation at restriction
+  std::vector<Mat3> orientation;
   std::vector<Vec3> rest_metric_mean;
   std::vector<Mat3> rest_metric_centered, rest_metric_pinned;
   std::vector<BodyState> correction;
@@ -207,7 +208,7 @@ void HierarchicalSolver::restrict_level(Level& level, const RigidSystem& finer,
     }
     level.correction[c] = {Mat3::Identity(), body.rest_center};
   }
-  on_two_threads(sys.couplings.size(), kParallelFrom, [&](size_t begin, size_t end) {
+  on_two_threads(sys.couplings.size(), kSecondThreadFrom, [&](size_t begin, size_t end) {
     for (size_t k = begin; k < end; ++k) {
       const RigidSystem::Coupling& fc = finer.couplings[level.coupling_parent[k]];
       RigidSystem::Coupling& c = sys.couplings[k];
@@ -235,7 +236,7 @@ void HierarchicalSolver::restrict_level(Level& level, const RigidSystem& finer,
 
 void HierarchicalSolver::prolong_level(const Level& level, std::vector<BodyState>& finer_state) const {
   const RigidSystem& sys = level.system;
-  on_two_threads(finer_state.size(), kParallelFrom, [&](size_t begin, size_t end) {
+  on_two_threads(finer_state.size(), kSecondThreadFrom, [&](size_t begin, size_t end) {
     for (size_t b = begin; b < end; ++b) {
       const int c = level.parent_of[b];
       const BodyState& corr = level.correction[c];
@@ -253,9 +254,10 @@ void HierarchicalSolver::solve_level(int l) {
     // While targets move (a drag: they change before every cycle), spent factors are refreshed
     // in the background so that no frame stops for a factorization; once they stay put, in
     // the foreground, where a fresh factor pays off at once.
-    const bool moving = cycles_since_restart_ <= kMovingCycles && drag_factor_lag() > 0;
+    const int lag = drag_factor_lag();
+    const bool moving = cycles_since_restart_ <= kMovingCycles && lag > 0;
     if (moving)
-      coarse_solver_->set_factor_reuse(options_.drag_factor_reuse, drag_factor_lag());
+      coarse_solver_->set_factor_reuse(options_.drag_factor_reuse, lag);
     else
       coarse_solver_->set_factor_reuse(options_.coarse_factor_reuse, 0);
     for (int it = 0; it < options_.coarse_iterations; ++it) {

@@ -186,7 +186,7 @@ void refresh_sweep_plan(SweepPlan& plan, const RigidSystem& system) {
   plan.joints.resize(system.body_couplings.size());
   plan.joint_weight.resize(n);
   plan.joint_source.resize(n);
-  on_two_threads(size_t(n), 20000, [&](size_t begin, size_t end) {
+  on_two_threads(size_t(n), kSecondThreadFrom, [&](size_t begin, size_t end) {
     for (int b = int(begin); b < int(end); ++b) {
       double weight = 0.0;
       Vec3 source = Vec3::Zero();
