@@ -1092,6 +1092,13 @@ int run_bench_drag(const BenchDragArguments& args) {
       {"core_defaults", !tuned}};
   if (method == SolveMethod::Hierarchical) {
     out["hierarchical_settings"] = settings;
+    std::string drag_refresh;
+    if (args.hierarchical.drag_factor_lag != 0) {
+      drag_refresh = "; during a drag " + std::to_string(args.hierarchical.drag_factor_reuse) +
+                     " times, refreshed in the background";
+      if (args.hierarchical.drag_factor_lag > 0)
+        drag_refresh += " for " + std::to_string(args.hierarchical.drag_factor_lag) + " steps";
+    }
     std::printf("           hierarchy: clusters of %d, coarsest <= %d bodies, %d fine sweeps, %d "
                 "intermediate sweeps x %d visits, %d coarse Newton iterations per cycle, a "
                 "coarse factorization reused up to %d times%s%s\n",
@@ -1099,15 +1106,7 @@ int run_bench_drag(const BenchDragArguments& args) {
                 args.hierarchical.hierarchy.coarsest_max_bodies,
                 args.hierarchical.sweeps_per_level, args.hierarchical.intermediate_sweeps,
                 args.hierarchical.intermediate_cycles, args.hierarchical.coarse_iterations,
-                args.hierarchical.coarse_factor_reuse,
-                args.hierarchical.drag_factor_lag != 0
-                    ? ("; during a drag " + std::to_string(args.hierarchical.drag_factor_reuse) +
-                       " times, refreshed in the background" +
-                       (args.hierarchical.drag_factor_lag > 0
-                            ? " for " + std::to_string(args.hierarchical.drag_factor_lag) + " steps"
-                            : std::string()))
-                          .c_str()
-                    : "",
+                args.hierarchical.coarse_factor_reuse, drag_refresh.c_str(),
                 tuned ? " (NOT the core's defaults)" : "");
   }
   std::printf("\n");
