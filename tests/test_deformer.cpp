@@ -16,43 +16,11 @@
 #include "test_support.h"
 
 using namespace primo;
+using primo::test::bent_cylinder;
+using primo::test::BentCylinder;
 using primo::test::faces_where;
 
 namespace {
-
-constexpr double kRadius = 0.25, kLength = 2.0;
-
-// A cylinder along y with its bottom band fixed and its top band as a handle.
-struct BentCylinder {
-  Mesh mesh;
-  std::vector<Handle> handles;
-  double diagonal;
-};
-
-BentCylinder bent_cylinder(int segments, int bands, double bend_deg, double twist_deg,
-                           Fix top_fix = Fix::All, FaceShape shape = FaceShape::Quads) {
-  BentCylinder c;
-  c.mesh = make_cylinder(kRadius, kLength, segments, bands, shape);
-  const double band = kLength / bands;
-  Handle bottom{"bottom", faces_where(c.mesh, [&](const Vec3& p) { return p.y() < band; }),
-                Fix::All, {}};
-  Handle top{"top", faces_where(c.mesh, [&](const Vec3& p) { return p.y() > kLength - band; }),
-             top_fix, {}};
-  // Bend along a circular arc of the cylinder's length towards +x, twisting about the axis.
-  const double theta = bend_deg * M_PI / 180.0;
-  const double rho = theta > 0 ? kLength / theta : 0.0;
-  const Vec3 end = theta > 0 ? Vec3(rho * (1 - std::cos(theta)), rho * std::sin(theta), 0)
-                             : Vec3(0, kLength, 0);
-  const Mat3 R = (Eigen::AngleAxisd(-theta, Vec3::UnitZ()) *
-                  Eigen::AngleAxisd(twist_deg * M_PI / 180.0, Vec3::UnitY()))
-                     .toRotationMatrix();
-  const Vec3 top_center(0, kLength, 0);
-  top.transform.rotation = R;
-  top.transform.translation = end - R * top_center;
-  c.handles = {bottom, top};
-  c.diagonal = bounding_box_diagonal(c.mesh);
-  return c;
-}
 
 // Vertices all of whose faces belong to `faces`.
 std::vector<int> interior_vertices(const Mesh& mesh, const std::vector<int>& faces) {

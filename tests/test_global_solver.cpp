@@ -8,24 +8,16 @@
 #include <Eigen/Geometry>
 
 #include "primo/deformer.h"
-#include "primo/mesh_generators.h"
 #include "test_support.h"
 
 using namespace primo;
-using primo::test::faces_where;
 
 namespace {
 
 // A 16 x 24 quad cylinder bent 90 degrees between its fixed bottom and top bands.
 Deformer bent_cylinder() {
-  const double length = 2.0;
-  const Mesh mesh = make_cylinder(0.25, length, 16, 24, FaceShape::Quads);
-  const double band = length / 24;
-  Handle bottom{"bottom", faces_where(mesh, [&](const Vec3& p) { return p.y() < band; }), Fix::All, {}};
-  Handle top{"top", faces_where(mesh, [&](const Vec3& p) { return p.y() > length - band; }), Fix::All, {}};
-  const double rho = length / (M_PI / 2);
-  top.transform = make_rigid_transform(Vec3(rho, rho - length, 0), Vec3::UnitZ(), -90.0, Vec3(0, length, 0));
-  return Deformer(mesh, PrismParameters{}, {bottom, top});
+  const test::BentCylinder c = test::bent_cylinder(16, 24, 90.0);
+  return Deformer(c.mesh, PrismParameters{}, c.handles);
 }
 
 double max_difference(const std::vector<BodyState>& a, const std::vector<BodyState>& b) {

@@ -28,16 +28,8 @@ struct PosedMesh {
 // A cylinder (2,400 quads by default) bent 90 degrees between its fixed bottom band and its
 // top band.
 PosedMesh bent_cylinder(int around = 40, int rings = 60) {
-  PosedMesh s;
-  const double length = 2.0;
-  s.mesh = make_cylinder(0.25, length, around, rings, FaceShape::Quads);
-  const double band = length / rings;
-  Handle bottom{"bottom", faces_where(s.mesh, [&](const Vec3& p) { return p.y() < band; }), Fix::All, {}};
-  Handle top{"top", faces_where(s.mesh, [&](const Vec3& p) { return p.y() > length - band; }), Fix::All, {}};
-  const double rho = length / (M_PI / 2);
-  top.transform = make_rigid_transform(Vec3(rho, rho - length, 0), Vec3::UnitZ(), -90.0, Vec3(0, length, 0));
-  s.handles = {bottom, top};
-  return s;
+  const test::BentCylinder c = test::bent_cylinder(around, rings, 90.0);
+  return {c.mesh, c.handles};
 }
 
 // Spot (assets/meshes): feet fixed, head moved by a position-only handle.

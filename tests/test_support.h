@@ -29,11 +29,24 @@ CommandResult run_primo(const std::string& arguments);
 #include <functional>
 #include <vector>
 
+#include "primo/constraints.h"
 #include "primo/mesh.h"
+#include "primo/mesh_generators.h"
 
 namespace primo::test {
 
 // Indices of the faces whose centroid satisfies `keep`.
 std::vector<int> faces_where(const Mesh& mesh, const std::function<bool(const Vec3&)>& keep);
+
+// A cylinder of radius 0.25 and length 2 along y, `segments` around and `bands` along, with
+// its bottom band fixed and its top band a handle bent along a circular arc towards +x by
+// `bend_deg` and twisted about its axis by `twist_deg`.
+struct BentCylinder {
+  Mesh mesh;
+  std::vector<Handle> handles;
+  double diagonal;
+};
+BentCylinder bent_cylinder(int segments, int bands, double bend_deg, double twist_deg = 0.0,
+                           Fix top_fix = Fix::All, FaceShape shape = FaceShape::Quads);
 
 }  // namespace primo::test
