@@ -73,6 +73,9 @@ struct RigidSystem {
   int n_bodies() const { return int(bodies.size()); }
   double energy(const std::vector<BodyState>& state) const;
   double coupling_energy(const Coupling& c, const BodyState& s0, const BodyState& s1) const;
+  static double spring_energy(const Spring& s, const BodyState& state) {
+    return s.weight * (state.rotation * s.local + state.position - s.target).squaredNorm();
+  }
 };
 
 // A spring on a face: the prism's rest centroid is pulled to `target`, with `weight` already

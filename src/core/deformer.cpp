@@ -161,7 +161,7 @@ double Deformer::body_energy(int body) const {
   }
   for (int k = system_.spring_begin[body]; k < system_.spring_begin[body + 1]; ++k) {
     const RigidSystem::Spring& sp = system_.springs[system_.body_springs[k]];
-    e += sp.weight * (world_point(state_[sp.body], sp.local) - sp.target).squaredNorm();
+    e += RigidSystem::spring_energy(sp, state_[sp.body]);
   }
   return e;
 }

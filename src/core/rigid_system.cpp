@@ -57,7 +57,7 @@ double RigidSystem::energy(const std::vector<BodyState>& state) const {
   });
   double e = internal_energy + half[0] + half[1];
   for (const Spring& s : springs)
-    e += s.weight * (world_point(state[s.body], s.local) - s.target).squaredNorm();
+    e += spring_energy(s, state[s.body]);
   return e;
 }
 
