@@ -7,7 +7,9 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <mutex>
 #include <sstream>
+#include <vector>
 
 namespace fs = std::filesystem;
 
@@ -23,12 +25,41 @@ std::string shared_path(const std::string& relative) {
 
 bool exists(const std::string& path) { return fs::exists(path); }
 
+namespace {
+
+// The directories handed out by temp_dir(), removed when the test process exits (each test
+// runs in its own process under ctest), unless PRIMO_KEEP_TEST_FILES is set for a post-mortem.
+class TempDirectories {
+ public:
+  ~TempDirectories() {
+    if (std::getenv("PRIMO_KEEP_TEST_FILES")) return;
+    std::error_code ignored;
+    for (const fs::path& dir : dirs_) fs::remove_all(dir, ignored);
+  }
+  void add(const fs::path& dir) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    dirs_.push_back(dir);
+  }
+
+ private:
+  std::mutex mutex_;
+  std::vector<fs::path> dirs_;
+};
+
+TempDirectories& temp_directories() {
+  static TempDirectories dirs;
+  return dirs;
+}
+
+}  // namespace
+
 std::string temp_dir() {
   static std::atomic<int> counter{0};
   fs::path dir = fs::temp_directory_path() /
                  ("primo-test-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
   fs::remove_all(dir);
   fs::create_directories(dir);
+  temp_directories().add(dir);
   return dir.string();
 }
 

@@ -10,7 +10,8 @@ std::string source_path(const std::string& relative);
 // <repo>/../shared/<relative>; shared data is optional, tests skip with a message when absent.
 std::string shared_path(const std::string& relative);
 bool exists(const std::string& path);
-// A fresh, empty directory under the system temp dir, unique per call.
+// A fresh, empty directory under the system temp dir, unique per call; removed when the test
+// process exits (kept when PRIMO_KEEP_TEST_FILES is set).
 std::string temp_dir();
 // Writes `text` to `path` (truncating).
 void write_text(const std::string& path, const std::string& text);
