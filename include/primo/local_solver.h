@@ -24,20 +24,24 @@ void local_sweep(const RigidSystem& system, std::vector<BodyState>& state);
 // ordering, so its fixed points are those of `local_sweep`; it needs one join per sweep and
 // no spinning barrier, which matters on two cores shared with rendering.
 //
-// The plan also holds each body's joints packed for matching (indexed like
-// system.body_couplings): the state-independent parts of Horn's sums, contiguous so that a
-// sweep streams them instead of gathering whole couplings.
+// The plan also holds each body's joints packed for matching: the state-independent parts of
+// Horn's sums, contiguous so that a sweep streams them instead of gathering whole couplings.
+// Those parts are linear in the joint's data, so all joints between the same two bodies are
+// summed into one: on a coarse level, where a cluster border is crossed by several fine
+// joints, a match then costs what the number of neighbouring clusters requires.
 struct SweepPlan {
   std::vector<int> half[2];
   std::vector<int> cut;
   struct PackedJoint {
     int other;         // the body on the other side
-    double weight;
+    double weight;     // sums over the joints between the two bodies:
     Vec3 own_mean;     // weight * own side's mean (body coordinates)
     Vec3 other_mean;   // weight * other side's mean (the other body's coordinates)
     Mat3 cross;        // Coupling::cross for the own side
   };
-  std::vector<PackedJoint> joints;
+  std::vector<PackedJoint> joints;   // body b's neighbours: joint_begin[b] .. joint_begin[b + 1]
+  std::vector<int> joint_begin;
+  std::vector<int> joint_slot;       // system.body_couplings[k] -> its entry in `joints`
   std::vector<double> joint_weight;  // per body: sum of its joints' weights
   std::vector<Vec3> joint_source;    // per body: sum of own_mean
 };

@@ -102,8 +102,8 @@ BodyState planned_match(const RigidSystem& system, const SweepPlan& plan,
   Vec3 source_sum = plan.joint_source[body];
   Vec3 target_sum = Vec3::Zero();
   Mat3 cross = Mat3::Zero();
-  const int end = system.coupling_begin[body + 1];
-  for (int k = system.coupling_begin[body]; k < end; ++k) {
+  const int end = plan.joint_begin[body + 1];
+  for (int k = plan.joint_begin[body]; k < end; ++k) {
     const SweepPlan::PackedJoint& j = plan.joints[k];
     add_joint(j.weight, j.own_mean, j.other_mean, j.cross, state[j.other], target_sum, cross);
   }
@@ -181,26 +181,61 @@ SweepPlan plan_sweep(const RigidSystem& system, bool parallel) {
   return plan;
 }
 
+namespace {
+
+// One packed entry per pair of coupled bodies: the slots of body b's couplings, in the order
+// of their other bodies' first appearance.
+void build_joint_slots(SweepPlan& plan, const RigidSystem& system) {
+  const int n = system.n_bodies();
+  plan.joint_begin.assign(n + 1, 0);
+  plan.joint_slot.resize(system.body_couplings.size());
+  std::vector<int> others;
+  int slots = 0;
+  for (int b = 0; b < n; ++b) {
+    plan.joint_begin[b] = slots;
+    others.clear();
+    for (int k = system.coupling_begin[b]; k < system.coupling_begin[b + 1]; ++k) {
+      const auto [ci, side] = system.body_couplings[k];
+      const int other = system.couplings[ci].body[1 - side];
+      const auto found = std::find(others.begin(), others.end(), other);
+      plan.joint_slot[k] = slots - int(others.size()) + int(found - others.begin());
+      if (found == others.end()) {
+        others.push_back(other);
+        ++slots;
+      }
+    }
+  }
+  plan.joint_begin[n] = slots;
+  plan.joints.resize(slots);
+}
+
+}  // namespace
+
 void refresh_sweep_plan(SweepPlan& plan, const RigidSystem& system) {
   const int n = system.n_bodies();
-  plan.joints.resize(system.body_couplings.size());
+  if (plan.joint_slot.size() != system.body_couplings.size() ||
+      int(plan.joint_begin.size()) != n + 1)
+    build_joint_slots(plan, system);
   plan.joint_weight.resize(n);
   plan.joint_source.resize(n);
   on_two_threads(size_t(n), kSecondThreadFrom, [&](size_t begin, size_t end) {
     for (int b = int(begin); b < int(end); ++b) {
+      for (int s = plan.joint_begin[b]; s < plan.joint_begin[b + 1]; ++s)
+        plan.joints[s] = {-1, 0.0, Vec3::Zero(), Vec3::Zero(), Mat3::Zero()};
       double weight = 0.0;
       Vec3 source = Vec3::Zero();
       for (int k = system.coupling_begin[b]; k < system.coupling_begin[b + 1]; ++k) {
         const auto [ci, side] = system.body_couplings[k];
         const RigidSystem::Coupling& c = system.couplings[ci];
-        SweepPlan::PackedJoint& j = plan.joints[k];
+        SweepPlan::PackedJoint& j = plan.joints[plan.joint_slot[k]];
+        const Vec3 own_mean = c.weight * c.local[side].mean;
         j.other = c.body[1 - side];
-        j.weight = c.weight;
-        j.own_mean = c.weight * c.local[side].mean;
-        j.other_mean = c.weight * c.local[1 - side].mean;
-        j.cross = c.cross[side];
+        j.weight += c.weight;
+        j.own_mean += own_mean;
+        j.other_mean += c.weight * c.local[1 - side].mean;
+        j.cross += c.cross[side];
         weight += c.weight;
-        source += j.own_mean;
+        source += own_mean;
       }
       plan.joint_weight[b] = weight;
       plan.joint_source[b] = source;
