@@ -91,10 +91,12 @@ TEST(BenchCli, DragReportsEveryFigure) {
 
   const nlohmann::json& per_frame = d["profile"]["per_frame_ms"];
   for (const char* key : {"total", "restrict_prolong", "coarse", "assembly", "factorization",
-                          "sweeps", "vertex_update", "other"})
+                          "sweeps", "acceleration", "vertex_update", "other"})
     EXPECT_TRUE(per_frame.contains(key)) << key;
   EXPECT_GT(per_frame["total"].get<double>(), 0.0);
   EXPECT_GT(per_frame["vertex_update"].get<double>(), 0.0);
+  // The full solve's cycles are accelerated (a drag's first cycle after each move is not).
+  EXPECT_GT(d["profile"]["full_solve_ms"]["acceleration"].get<double>(), 0.0);
   EXPECT_EQ(d["profile"]["per_frame_frames"].get<int>(), 4);
 }
 

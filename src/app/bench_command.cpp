@@ -756,6 +756,7 @@ struct SolverClock {
   double restrict_prolong = 0.0;
   double coarse = 0.0;
   double sweeps = 0.0;
+  double acceleration = 0.0;
   int cycles = 0;
   GlobalSolverTimings newton;  // the coarse level's solver (hierarchical) or the global solver
 
@@ -765,6 +766,7 @@ struct SolverClock {
       c.restrict_prolong = h->timings().restrict_prolong;
       c.coarse = h->timings().coarse;
       c.sweeps = h->timings().sweeps;
+      c.acceleration = h->timings().acceleration;
       c.cycles = h->timings().cycles;
       if (const GlobalSolver* g = h->coarse_solver()) c.newton = g->timings();
     } else if (const GlobalSolver* g = deformer.global_solver()) {
@@ -787,19 +789,21 @@ struct Breakdown {
   double solve = 0.0;
   double line_search = 0.0;
   double sweeps = 0.0;
+  double acceleration = 0.0;  // Anderson proposals and their energy
   double vertex_update = 0.0;
   double factorizations = 0.0;  // count (per frame after per())
 
   double newton() const { return assembly + factorization + solve + line_search; }
   double other() const {
     // The coarse phase contains the coarse Newton parts; the global method has no coarse phase.
-    const double solver = restrict_prolong + sweeps + std::max(coarse, newton());
+    const double solver = restrict_prolong + sweeps + acceleration + std::max(coarse, newton());
     return total - set_targets - vertex_update - solver;
   }
   void add_solver(const SolverClock& before, const SolverClock& after) {
     restrict_prolong += after.restrict_prolong - before.restrict_prolong;
     coarse += after.coarse - before.coarse;
     sweeps += after.sweeps - before.sweeps;
+    acceleration += after.acceleration - before.acceleration;
     assembly += after.newton.assembly - before.newton.assembly;
     factorization += after.newton.factorization - before.newton.factorization;
     solve += after.newton.solve - before.newton.solve;
@@ -810,8 +814,8 @@ struct Breakdown {
     Breakdown b = *this;
     const double k = n > 0 ? 1.0 / n : 0.0;
     for (double* x : {&b.total, &b.set_targets, &b.restrict_prolong, &b.coarse, &b.assembly,
-                      &b.factorization, &b.solve, &b.line_search, &b.sweeps, &b.vertex_update,
-                      &b.factorizations})
+                      &b.factorization, &b.solve, &b.line_search, &b.sweeps, &b.acceleration,
+                      &b.vertex_update, &b.factorizations})
       *x *= k;
     return b;
   }
@@ -825,6 +829,7 @@ struct Breakdown {
             {"solve", 1e3 * solve},
             {"line_search", 1e3 * line_search},
             {"sweeps", 1e3 * sweeps},
+            {"acceleration", 1e3 * acceleration},
             {"vertex_update", 1e3 * vertex_update},
             {"other", 1e3 * other()},
             {"factorizations", factorizations}};
@@ -987,9 +992,9 @@ void print_breakdown_row(const char* label, const Breakdown& b, SolveMethod meth
     std::printf(" %8.2f", 1e3 * b.coarse);
   else
     std::printf(" %8s", "-");
-  std::printf(" %8.2f %8.2f %8.2f %8.2f %8.2f %8.2f %8.2f\n", 1e3 * b.assembly,
+  std::printf(" %8.2f %8.2f %8.2f %8.2f %8.2f %8.2f %8.2f %8.2f\n", 1e3 * b.assembly,
               1e3 * b.factorization, 1e3 * b.solve, 1e3 * b.line_search, 1e3 * b.sweeps,
-              1e3 * b.vertex_update, 1e3 * b.other());
+              1e3 * b.acceleration, 1e3 * b.vertex_update, 1e3 * b.other());
 }
 
 const char* method_label(SolveMethod m) {
@@ -1178,9 +1183,9 @@ int run_bench_drag(const BenchDragArguments& args) {
 
   const int later = int(drag.frame_seconds.size()) - 1;
   std::printf("Where the time goes (ms; 'coarse' contains the coarse Newton columns after it)\n");
-  std::printf("  %-22s %9s %8s %8s %8s %8s %8s %8s %8s %8s %8s %8s\n", "", "total", "targets",
-              "restr+pr", "coarse", "assembly", "factor", "solve", "line srch", "sweeps",
-              "vertices", "other");
+  std::printf("  %-22s %9s %8s %8s %8s %8s %8s %8s %8s %8s %8s %8s %8s\n", "", "total",
+              "targets", "restr+pr", "coarse", "assembly", "factor", "solve", "line srch",
+              "sweeps", "accel", "vertices", "other");
   print_breakdown_row("first frame", drag.first_frame, method);
   if (later > 0) print_breakdown_row("per frame, 2..N", drag.later_frames.per(later), method);
   if (!args.drag_only) print_breakdown_row("converge (total)", drag.converge_profile, method);
