@@ -14,6 +14,7 @@
 // pattern, hence the symbolic factorization, is fixed for the life of the solver (one
 // handle set).
 
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -78,8 +79,10 @@ class HierarchicalSolver {
 
   // One cycle from `fine_state` (updated in place). Returns the fine energy after it. With
   // acceleration, the cycle's result is replaced by the accelerated proposal when that has
-  // lower energy (otherwise the history is restarted).
-  double cycle(std::vector<BodyState>& fine_state);
+  // lower energy (otherwise the history is restarted): lower than `energy_before`, the energy
+  // of `fine_state` on entry, when the caller knows it, else lower than the cycle's result.
+  double cycle(std::vector<BodyState>& fine_state,
+               double energy_before = std::numeric_limits<double>::quiet_NaN());
   // Forget the acceleration history (the targets changed).
   void restart_acceleration() {
     acceleration_.reset();
@@ -101,7 +104,7 @@ class HierarchicalSolver {
   void restrict_level(Level& level, const RigidSystem& finer,
                       const std::vector<BodyState>& finer_state,
                       const std::vector<Mat3>* finer_orientation);
-  double plain_cycle(std::vector<BodyState>& fine_state);
+  double plain_cycle(std::vector<BodyState>& fine_state, bool with_energy = true);
   // Improves level l's corrections (restricted already) with the levels above it and sweeps.
   void solve_level(int l);
   // Applies the level's corrections to the bodies of the next finer level.

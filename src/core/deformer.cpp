@@ -213,7 +213,7 @@ SolveReport Deformer::solve(const SolveOptions& options) {
     } else if (options.method == SolveMethod::Hierarchical) {
       if (!hierarchical_)
         hierarchical_ = std::make_unique<HierarchicalSolver>(system_, options.hierarchical);
-      after = hierarchical_->cycle(state_);
+      after = hierarchical_->cycle(state_, before);
     } else {
       local_sweep(system_, state_);
       after = energy();

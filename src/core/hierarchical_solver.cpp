@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 
 #include "primo/horn.h"
 #include "primo/two_threads.h"
@@ -288,32 +289,39 @@ void HierarchicalSolver::solve_level(int l) {
   }
 }
 
-double HierarchicalSolver::cycle(std::vector<BodyState>& fine_state) {
+double HierarchicalSolver::cycle(std::vector<BodyState>& fine_state, double energy_before) {
   // The first cycle after a restart is not recorded: a drag updates the targets before every
   // cycle, and would pay for bookkeeping it can never use.
   const bool accelerate = acceleration_.history() > 0 && cycles_since_restart_ > 0;
   ++cycles_since_restart_;
   if (accelerate) cycle_input_ = fine_state;
-  double energy = plain_cycle(fine_state);
+  // With the energy before the cycle known, an accelerated proposal is kept when it lies below
+  // it (still a descent method), and the plain cycle's result needs no energy of its own
+  // unless the proposal is refused: one pass over all joints less per accepted cycle.
+  const bool skip_plain_energy = accelerate && std::isfinite(energy_before);
+  double energy = plain_cycle(fine_state, !skip_plain_energy);
   if (accelerate) {
     const auto t = Clock::now();
     std::vector<BodyState> proposal = acceleration_.propose(cycle_input_, fine_state);
     if (acceleration_.stored() > 0) {
       const double proposed = fine_.energy(proposal);
-      if (proposed < energy) {
+      if (proposed < (skip_plain_energy ? energy_before : energy)) {
         fine_state.swap(proposal);
         energy = proposed;
         ++timings_.accepted_accelerations;
       } else {
         acceleration_.reset();
+        if (skip_plain_energy) energy = fine_.energy(fine_state);
       }
+    } else if (skip_plain_energy) {
+      energy = fine_.energy(fine_state);
     }
     timings_.acceleration += seconds_since(t);
   }
   return energy;
 }
 
-double HierarchicalSolver::plain_cycle(std::vector<BodyState>& fine_state) {
+double HierarchicalSolver::plain_cycle(std::vector<BodyState>& fine_state, bool with_energy) {
   ++timings_.cycles;
   if (!levels_.empty()) {
     auto t = Clock::now();
@@ -327,7 +335,7 @@ double HierarchicalSolver::plain_cycle(std::vector<BodyState>& fine_state) {
   const auto t = Clock::now();
   for (int k = 0; k < options_.sweeps_per_level; ++k) planned_sweep(fine_, fine_plan_, fine_state);
   timings_.sweeps += seconds_since(t);
-  return fine_.energy(fine_state);
+  return with_energy ? fine_.energy(fine_state) : std::numeric_limits<double>::quiet_NaN();
 }
 
 }  // namespace primo
