@@ -33,8 +33,9 @@ class AndersonAcceleration {
 
  private:
   int history_;
-  std::vector<double> last_residual_, last_image_;
-  std::vector<std::vector<double>> delta_residual_, delta_image_;  // oldest first
+  std::vector<float> last_residual_;
+  std::vector<double> last_image_;
+  std::vector<std::vector<float>> delta_residual_, delta_image_;  // oldest first
   Eigen::MatrixXd gram_;  // inner products of the residual differences
 };
 

@@ -41,23 +41,34 @@ std::vector<BodyState> AndersonAcceleration::propose(const std::vector<BodyState
   });
 
   if (last_residual_.size() == n) {
-    // The last residual and image become the newest differences (in place: memory is
-    // 2 x (history + 1) state vectors).
-    on_two_threads(n, kSecondThreadFrom * kEmbedding, [&](size_t begin, size_t end) {
-      for (size_t i = begin; i < end; ++i) {
-        last_residual_[i] = f[i] - last_residual_[i];
-        last_image_[i] = g[i] - last_image_[i];
-      }
-    });
+    // The newest differences. The history is kept in single precision: it halves the memory
+    // traffic that dominates a proposal on large meshes, and differences of nearby states lose
+    // nothing that matters to a least-squares fit whose result is checked against the energy.
+    // The last image stays in double, since its difference with the next one is small.
     if (int(delta_residual_.size()) == history_) {
+      std::vector<float> reused_residual = std::move(delta_residual_.front());
+      std::vector<float> reused_image = std::move(delta_image_.front());
       delta_residual_.erase(delta_residual_.begin());
       delta_image_.erase(delta_image_.begin());
+      delta_residual_.push_back(std::move(reused_residual));
+      delta_image_.push_back(std::move(reused_image));
       const int k = int(gram_.rows()) - 1;
       const Eigen::MatrixXd kept = gram_.bottomRightCorner(k, k);
       gram_ = kept;
+    } else {
+      delta_residual_.emplace_back();
+      delta_image_.emplace_back();
     }
-    delta_residual_.push_back(std::move(last_residual_));
-    delta_image_.push_back(std::move(last_image_));
+    std::vector<float>& dr = delta_residual_.back();
+    std::vector<float>& dg = delta_image_.back();
+    dr.resize(n);
+    dg.resize(n);
+    on_two_threads(n, kSecondThreadFrom * kEmbedding, [&](size_t begin, size_t end) {
+      for (size_t i = begin; i < end; ++i) {
+        dr[i] = float(f[i] - double(last_residual_[i]));
+        dg[i] = float(g[i] - last_image_[i]);
+      }
+    });
   } else {
     reset();
   }
@@ -66,16 +77,16 @@ std::vector<BodyState> AndersonAcceleration::propose(const std::vector<BodyState
   if (m > 0) {
     // One pass for the Gram matrix's new column (the others are kept from earlier calls) and
     // the right-hand side dF^T f of the least-squares problem min |f - dF theta|.
-    const std::vector<double>& newest = delta_residual_.back();
+    const std::vector<float>& newest = delta_residual_.back();
     double sums[2][2 * 64] = {};  // per thread: m column entries, then m right-hand sides
     on_two_threads(n, kSecondThreadFrom * kEmbedding, [&](size_t begin, size_t end) {
       double* s = sums[begin == 0 ? 0 : 1];
       for (int a = 0; a < m; ++a) {
-        const double* da = delta_residual_[a].data();
+        const float* da = delta_residual_[a].data();
         double column = 0.0, rhs = 0.0;
         for (size_t i = begin; i < end; ++i) {
-          column += da[i] * newest[i];
-          rhs += da[i] * f[i];
+          column += double(da[i]) * double(newest[i]);
+          rhs += double(da[i]) * f[i];
         }
         s[a] = column;
         s[m + a] = rhs;
@@ -98,7 +109,7 @@ std::vector<BodyState> AndersonAcceleration::propose(const std::vector<BodyState
           const size_t at = b * kEmbedding;
           for (int k = 0; k < kEmbedding; ++k) {
             x[k] = g[at + k];
-            for (int a = 0; a < m; ++a) x[k] -= theta[a] * delta_image_[a][at + k];
+            for (int a = 0; a < m; ++a) x[k] -= theta[a] * double(delta_image_[a][at + k]);
           }
           Mat3 r;
           for (int k = 0; k < 9; ++k) r(k % 3, k / 3) = x[k];
@@ -110,7 +121,7 @@ std::vector<BodyState> AndersonAcceleration::propose(const std::vector<BodyState
       });
     }
   }
-  last_residual_ = std::move(f);
+  last_residual_.assign(f.begin(), f.end());
   last_image_ = std::move(g);
   return next;
 }
