@@ -58,8 +58,8 @@ struct HierarchicalOptions {
   int drag_factor_lag = -1;
   double intermediate_relaxation = 1.8;  // over-relaxation of intermediate sweeps (1: none)
   // Cycles are accelerated by Anderson acceleration over this many past cycles (0: plain
-  // cycles). Memory per fine body: 2 x history x 12 floats of history, and 12 floats and
-  // 12 doubles for the last cycle.
+  // cycles). Memory per fine body: 2 x history x 7 floats of history, and 7 floats and
+  // 7 doubles for the last cycle.
   int acceleration_history = 5;
   double exact_hessian_below = 1e-1;  // as SolveOptions::exact_hessian_below, for the coarsest level
 };

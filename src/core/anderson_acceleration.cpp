@@ -1,18 +1,29 @@
 #include "primo/anderson_acceleration.h"
 
 #include <Eigen/Cholesky>
+#include <Eigen/Geometry>
 
-#include "primo/horn.h"
 #include "primo/two_threads.h"
 
 namespace primo {
 namespace {
 
-constexpr int kEmbedding = 12;  // rotation (9) and position (3)
+constexpr int kEmbedding = 7;  // unit quaternion (4) and position (3)
 
-void embed(const BodyState& s, double* out) {
-  for (int k = 0; k < 9; ++k) out[k] = s.rotation(k % 3, k / 3);
-  for (int k = 0; k < 3; ++k) out[9 + k] = s.position[k];
+// The quaternion's sign is chosen on the side of `align` (a previous embedding, or null), so
+// that nearby rotations have nearby embeddings.
+void embed(const BodyState& s, const double* align, double* out) {
+  const Eigen::Quaterniond q(s.rotation);
+  double sign = 1.0;
+  const double side = align ? q.w() * align[0] + q.x() * align[1] + q.y() * align[2] +
+                                  q.z() * align[3]
+                            : q.w();
+  if (side < 0.0) sign = -1.0;
+  out[0] = sign * q.w();
+  out[1] = sign * q.x();
+  out[2] = sign * q.y();
+  out[3] = sign * q.z();
+  for (int k = 0; k < 3; ++k) out[4 + k] = s.position[k];
 }
 
 }  // namespace
@@ -33,9 +44,10 @@ std::vector<BodyState> AndersonAcceleration::propose(const std::vector<BodyState
   std::vector<double> g(n), f(n);
   on_two_threads(n_bodies, kSecondThreadFrom, [&](size_t begin, size_t end) {
     double x[kEmbedding];
+    const bool aligned = last_image_.size() == n;
     for (size_t b = begin; b < end; ++b) {
-      embed(image[b], &g[b * kEmbedding]);
-      embed(input[b], x);
+      embed(image[b], aligned ? &last_image_[b * kEmbedding] : nullptr, &g[b * kEmbedding]);
+      embed(input[b], &g[b * kEmbedding], x);
       for (int k = 0; k < kEmbedding; ++k) f[b * kEmbedding + k] = g[b * kEmbedding + k] - x[k];
     }
   });
@@ -111,12 +123,14 @@ std::vector<BodyState> AndersonAcceleration::propose(const std::vector<BodyState
             x[k] = g[at + k];
             for (int a = 0; a < m; ++a) x[k] -= theta[a] * double(delta_image_[a][at + k]);
           }
-          Mat3 r;
-          for (int k = 0; k < 9; ++k) r(k % 3, k / 3) = x[k];
           // Unchanged through the history: keep the image's rotation bit for bit.
-          if (r != image[b].rotation)
-            next[b].rotation = horn_rotation(r.transpose(), image[b].rotation);
-          for (int k = 0; k < 3; ++k) next[b].position[k] = x[9 + k];
+          if (x[0] != g[at] || x[1] != g[at + 1] || x[2] != g[at + 2] || x[3] != g[at + 3]) {
+            const Eigen::Quaterniond q(x[0], x[1], x[2], x[3]);
+            const double norm = q.norm();
+            if (norm > 0.0)
+              next[b].rotation = Eigen::Quaterniond(q.coeffs() / norm).toRotationMatrix();
+          }
+          for (int k = 0; k < 3; ++k) next[b].position[k] = x[4 + k];
         }
       });
     }
