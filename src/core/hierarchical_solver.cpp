@@ -311,13 +311,11 @@ double HierarchicalSolver::cycle(std::vector<BodyState>& fine_state, double ener
         ++timings_.accepted_accelerations;
       } else {
         acceleration_.reset();
-        if (skip_plain_energy) energy = fine_.energy(fine_state);
       }
-    } else if (skip_plain_energy) {
-      energy = fine_.energy(fine_state);
     }
     timings_.acceleration += seconds_since(t);
   }
+  if (std::isnan(energy)) energy = fine_.energy(fine_state);  // skipped, and no proposal kept
   return energy;
 }
 

@@ -189,24 +189,20 @@ void build_joint_slots(SweepPlan& plan, const RigidSystem& system) {
   const int n = system.n_bodies();
   plan.joint_begin.assign(n + 1, 0);
   plan.joint_slot.resize(system.body_couplings.size());
-  std::vector<int> others;
-  int slots = 0;
+  plan.joints.clear();
   for (int b = 0; b < n; ++b) {
-    plan.joint_begin[b] = slots;
-    others.clear();
+    const int first = plan.joint_begin[b] = int(plan.joints.size());
     for (int k = system.coupling_begin[b]; k < system.coupling_begin[b + 1]; ++k) {
       const auto [ci, side] = system.body_couplings[k];
       const int other = system.couplings[ci].body[1 - side];
-      const auto found = std::find(others.begin(), others.end(), other);
-      plan.joint_slot[k] = slots - int(others.size()) + int(found - others.begin());
-      if (found == others.end()) {
-        others.push_back(other);
-        ++slots;
-      }
+      int slot = first;
+      while (slot < int(plan.joints.size()) && plan.joints[slot].other != other) ++slot;
+      if (slot == int(plan.joints.size()))
+        plan.joints.push_back({other, 0.0, Vec3::Zero(), Vec3::Zero(), Mat3::Zero()});
+      plan.joint_slot[k] = slot;
     }
   }
-  plan.joint_begin[n] = slots;
-  plan.joints.resize(slots);
+  plan.joint_begin[n] = int(plan.joints.size());
 }
 
 }  // namespace
@@ -220,8 +216,12 @@ void refresh_sweep_plan(SweepPlan& plan, const RigidSystem& system) {
   plan.joint_source.resize(n);
   on_two_threads(size_t(n), kSecondThreadFrom, [&](size_t begin, size_t end) {
     for (int b = int(begin); b < int(end); ++b) {
-      for (int s = plan.joint_begin[b]; s < plan.joint_begin[b + 1]; ++s)
-        plan.joints[s] = {-1, 0.0, Vec3::Zero(), Vec3::Zero(), Mat3::Zero()};
+      for (int s = plan.joint_begin[b]; s < plan.joint_begin[b + 1]; ++s) {
+        SweepPlan::PackedJoint& j = plan.joints[s];  // `other` is set once, with the slots
+        j.weight = 0.0;
+        j.own_mean = j.other_mean = Vec3::Zero();
+        j.cross = Mat3::Zero();
+      }
       double weight = 0.0;
       Vec3 source = Vec3::Zero();
       for (int k = system.coupling_begin[b]; k < system.coupling_begin[b + 1]; ++k) {
@@ -229,7 +229,6 @@ void refresh_sweep_plan(SweepPlan& plan, const RigidSystem& system) {
         const RigidSystem::Coupling& c = system.couplings[ci];
         SweepPlan::PackedJoint& j = plan.joints[plan.joint_slot[k]];
         const Vec3 own_mean = c.weight * c.local[side].mean;
-        j.other = c.body[1 - side];
         j.weight += c.weight;
         j.own_mean += own_mean;
         j.other_mean += c.weight * c.local[1 - side].mean;
