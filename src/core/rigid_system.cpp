@@ -27,15 +27,16 @@ void add_outer(Mat3& m, const Vec3& a, double w) { m.noalias() += w * a * a.tran
 }  // namespace
 
 void RigidSystem::Coupling::update_cross() {
-  for (int s = 0; s < 2; ++s) {
-    const PatchModes& own = local[s];
-    const PatchModes& other = local[1 - s];
-    cross[s].noalias() = own.mean * other.mean.transpose();
-    cross[s].noalias() += kModeWeightDu * own.du * other.du.transpose();
-    cross[s].noalias() += kModeWeightDv * own.dv * other.dv.transpose();
-    cross[s].noalias() += kModeWeightDuv * own.duv * other.duv.transpose();
-    cross[s] *= weight;
-  }
+  const PatchModes& own = local[0];
+  const PatchModes& other = local[1];
+  cross[0].noalias() = own.mean * other.mean.transpose();
+  cross[0].noalias() += kModeWeightDu * own.du * other.du.transpose();
+  cross[0].noalias() += kModeWeightDv * own.dv * other.dv.transpose();
+  cross[0].noalias() += kModeWeightDuv * own.duv * other.duv.transpose();
+  cross[0] *= weight;
+  // The other side's sum is this one transposed: the same products, only the mode weight
+  // multiplies the other factor first (a rounding difference), at half the work.
+  cross[1] = cross[0].transpose();
 }
 
 double RigidSystem::coupling_energy(const Coupling& c, const BodyState& s0,
