@@ -92,3 +92,45 @@ TEST(SweepPlan, PlannedSweepMatchesThePlainSweep) {
     EXPECT_LT((plain[b].position - planned[b].position).norm(), 1e-10) << "body " << b;
   }
 }
+
+// One free body among fixed ones, turned off its rest pose: its plain match is the rest pose.
+// Over-relaxed by r, it turns r times as far, past the rest pose, when that still lowers its
+// energy, and stops at the match when it would not.
+TEST(SweepPlan, OverRelaxedMatchTurnsFurtherAlongTheSameGeodesic) {
+  GroupedCylinder g = grouped_cylinder();
+  const int free_body = 5;
+  std::vector<BodyKind> kinds(g.system.n_bodies(), BodyKind::Fixed);
+  kinds[free_body] = BodyKind::Free;
+  std::vector<int> face_body(g.mesh.n_faces());
+  for (int b = 0; b < g.system.n_bodies(); ++b)
+    for (int f : g.system.bodies[b].faces) face_body[f] = b;
+  const RigidSystem system = build_rigid_system(g.layer, face_body, kinds, {});
+  const Vec3 axis = Vec3(1.0, 2.0, -0.5).normalized();
+  const double angle = 0.1;
+  auto turned = [&] {
+    std::vector<BodyState> state(system.n_bodies());
+    for (int b = 0; b < system.n_bodies(); ++b) state[b].position = system.bodies[b].rest_center;
+    state[free_body].rotation = Eigen::AngleAxisd(angle, axis).toRotationMatrix();
+    return state;
+  };
+  const SweepPlan plan = plan_sweep(system);
+  const double start = system.energy(turned());
+  ASSERT_GT(start, 0.0);
+
+  std::vector<BodyState> plain = turned();
+  planned_sweep(system, plan, plain, 1.0);
+  EXPECT_LT((plain[free_body].rotation - Mat3::Identity()).norm(), 1e-9);
+  EXPECT_LT(system.energy(plain), 1e-12 * start);
+
+  std::vector<BodyState> over = turned();
+  planned_sweep(system, plan, over, 1.8);
+  const Eigen::AngleAxisd result(over[free_body].rotation);
+  // 0.8 of the turn on the other side of the rest pose (to third order in the angle).
+  EXPECT_NEAR(result.angle(), 0.8 * angle, 1e-3);
+  EXPECT_GT(result.axis().dot(-axis), 1.0 - 1e-9);
+  EXPECT_LT(system.energy(over), start);
+
+  std::vector<BodyState> too_far = turned();
+  planned_sweep(system, plan, too_far, 2.5);  // 1.5 turns past rest: more energy than at start
+  EXPECT_LT((too_far[free_body].rotation - Mat3::Identity()).norm(), 1e-9);
+}

@@ -49,8 +49,8 @@ SweepPlan plan_sweep(const RigidSystem& system, bool parallel = true);
 // Re-reads the couplings' values after they changed (same couplings, same bodies); springs
 // are always read from the system.
 void refresh_sweep_plan(SweepPlan& plan, const RigidSystem& system);
-// With `relaxation` > 1 (successive over-relaxation) each body moves that many times as far
-// as its match along the geodesic, when that lowers its energy, and to its match otherwise:
+// With `relaxation` > 1 (successive over-relaxation) each body moves about that many times as
+// far as its match along the geodesic, when that lowers its energy, and to its match otherwise:
 // still a descent method, faster on smooth errors.
 void planned_sweep(const RigidSystem& system, const SweepPlan& plan,
                    std::vector<BodyState>& state, double relaxation = 1.0);
