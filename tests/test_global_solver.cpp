@@ -1,5 +1,6 @@
 // Global Newton matching's reuse of factorizations: how long a factor serves, refreshing it
-// on a background thread, and turning a reused factor with the bodies.
+// on a background thread, turning a reused factor with the bodies, and a reused step's
+// gradient.
 
 #include "primo/global_solver.h"
 
@@ -8,15 +9,17 @@
 #include <Eigen/Geometry>
 
 #include "primo/deformer.h"
+#include "primo/two_threads.h"
 #include "test_support.h"
 
 using namespace primo;
 
 namespace {
 
-// A 16 x 24 quad cylinder bent 90 degrees between its fixed bottom and top bands.
-Deformer bent_cylinder() {
-  const test::BentCylinder c = test::bent_cylinder(16, 24, 90.0);
+// A quad cylinder (16 x 24 unless given) bent 90 degrees between its fixed bottom and top
+// bands.
+Deformer bent_cylinder(int segments = 16, int bands = 24) {
+  const test::BentCylinder c = test::bent_cylinder(segments, bands, 90.0);
   return Deformer(c.mesh, PrismParameters{}, c.handles);
 }
 
@@ -112,4 +115,26 @@ TEST(GlobalSolver, AReusedFactorTurnsWithTheBodies) {
   unturned.iterate(from_unturned, false, true);
   EXPECT_GT(max_difference(from_unturned, from_fresh), 1e-4);
   EXPECT_GT(system.energy(from_unturned), system.energy(from_fresh));
+}
+
+TEST(GlobalSolver, AReusedStepsGradientOnTwoThreadsIsTheFullAssemblysGradient) {
+  // Above kSecondThreadFrom couplings the gradient of a reused step is summed on two threads.
+  // Reusing the factor of the very state it starts from, the step must be the fresh one,
+  // whose gradient comes from the one-thread full assembly.
+  Deformer d = bent_cylinder(100, 104);
+  const RigidSystem& system = d.system();
+  ASSERT_GE(system.couplings.size(), kSecondThreadFrom);
+  const std::vector<BodyState> start = d.body_states();
+
+  GlobalSolver reused(system, GlobalSolver::Factorization::SupernodalOneThread);
+  std::vector<BodyState> scratch = start;
+  reused.iterate(scratch, false);  // the factor of `start`
+  std::vector<BodyState> from_reused = start;
+  ASSERT_TRUE(reused.iterate(from_reused, false, true).reused_factorization);
+
+  GlobalSolver fresh(system, GlobalSolver::Factorization::SupernodalOneThread);
+  std::vector<BodyState> from_fresh = start;
+  fresh.iterate(from_fresh, false);
+  EXPECT_GT(max_difference(from_fresh, start), 1e-3);
+  EXPECT_LT(max_difference(from_reused, from_fresh), 1e-9);
 }

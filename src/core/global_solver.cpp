@@ -16,6 +16,7 @@
 #include <dlfcn.h>
 
 #include "primo/horn.h"
+#include "primo/two_threads.h"
 
 namespace primo {
 namespace {
@@ -180,6 +181,7 @@ struct GlobalSolver::Impl {
   std::vector<Mat6> diag, off;
   std::vector<Mat3> second;
   std::vector<Vec6> grad;
+  std::vector<Vec6> second_half_grad;  // assemble_gradient's second thread
 
   SparseMatrix matrix;
   std::vector<std::array<int, 36>> diag_slots, off_slots;
@@ -366,21 +368,37 @@ void GlobalSolver::Impl::assemble(const std::vector<BodyState>& state) {
 }
 
 void GlobalSolver::Impl::assemble_gradient(const std::vector<BodyState>& state) {
-  std::fill(grad.begin(), grad.end(), Vec6::Zero());
   // As FeatureBlocks::add, gradient rows only: w r for a point's translation, w y x r for
-  // each rotation.
-  for (const RigidSystem::Coupling& c : sys.couplings) {
-    const int b0 = c.body[0], b1 = c.body[1];
-    if (!active[b0] && !active[b1]) continue;
-    for_each_residual(c, state[b0], state[b1],
-                      [&](const Vec3& y0, const Vec3& y1, const Vec3& r, double w, bool point) {
-                        if (point) {
-                          grad[b0].head<3>() += w * r;
-                          grad[b1].head<3>() -= w * r;
-                        }
-                        grad[b0].tail<3>() += w * y0.cross(r);
-                        grad[b1].tail<3>() -= w * y1.cross(r);
-                      });
+  // each rotation. A reused factor needs nothing else, so on the hierarchy's coarsest level
+  // this runs twice a cycle: on two threads, the second half of the couplings into its own
+  // gradient, added at the end (a fixed split, so the sums do not depend on timing).
+  auto add_couplings = [&](size_t begin, size_t end, std::vector<Vec6>& g) {
+    for (size_t ci = begin; ci < end; ++ci) {
+      const RigidSystem::Coupling& c = sys.couplings[ci];
+      const int b0 = c.body[0], b1 = c.body[1];
+      if (!active[b0] && !active[b1]) continue;
+      for_each_residual(c, state[b0], state[b1],
+                        [&](const Vec3& y0, const Vec3& y1, const Vec3& r, double w, bool point) {
+                          if (point) {
+                            g[b0].head<3>() += w * r;
+                            g[b1].head<3>() -= w * r;
+                          }
+                          g[b0].tail<3>() += w * y0.cross(r);
+                          g[b1].tail<3>() -= w * y1.cross(r);
+                        });
+    }
+  };
+  std::fill(grad.begin(), grad.end(), Vec6::Zero());
+  const size_t n_couplings = sys.couplings.size();
+  if (n_couplings < kSecondThreadFrom) {
+    add_couplings(0, n_couplings, grad);
+  } else {
+    second_half_grad.assign(grad.size(), Vec6::Zero());
+    const size_t middle = n_couplings / 2;
+    std::thread other([&] { add_couplings(middle, n_couplings, second_half_grad); });
+    add_couplings(0, middle, grad);
+    other.join();
+    for (size_t b = 0; b < grad.size(); ++b) grad[b] += second_half_grad[b];
   }
   for (const RigidSystem::Spring& s : sys.springs) {
     if (!active[s.body]) continue;
