@@ -134,3 +134,21 @@ TEST(EditorEnergyMap, SumsToTheDeformerEnergy) {
   EXPECT_NEAR(sum, d.energy(), 1e-9 * d.energy());
   EXPECT_GT(d.energy(), 0.0);
 }
+
+TEST(EditorSolverWorker, NewHandlesAtRestSetUpTheSolverBeforeTheDrag) {
+  // Nothing to solve yet, but the solver is set up while the user has not started dragging:
+  // the hierarchy and the coarse analysis would otherwise pause the drag's first frame.
+  for (SolverMethod method : {SolverMethod::Hierarchical, SolverMethod::Global}) {
+    Bent b;
+    auto problem = b.problem();
+    auto with_method = std::make_shared<SolverProblem>(*problem);
+    with_method->spec.method = method;
+    SolverWorker w;
+    w.submit_problem(with_method);
+    ASSERT_TRUE(w.wait_idle(60));
+    const SolverStatus s = w.status();
+    EXPECT_EQ(s.phase, SolverPhase::Settled);
+    EXPECT_EQ(s.iterations, 0);
+    EXPECT_TRUE(s.solver_ready) << (method == SolverMethod::Global ? "global" : "hierarchical");
+  }
+}

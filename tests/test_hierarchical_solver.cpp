@@ -237,6 +237,38 @@ TEST(HierarchicalSolver, AConvergedStateCostsNothing) {
   EXPECT_GT(d.solve(hierarchical(5, 1e-6)).iterations, 0);
 }
 
+TEST(HierarchicalSolver, PreparedAtRestTheSolverChangesNoResult) {
+  // New handles not moved yet: a solve returns at once, before the hierarchy is built;
+  // prepare() builds it then, without touching the state or any later result.
+  const PosedMesh s = bent_cylinder();
+  std::vector<Handle> at_rest = s.handles;
+  for (Handle& h : at_rest) h.transform = RigidTransform{};
+  Deformer prepared(s.mesh, PrismParameters{}, at_rest), lazy(s.mesh, PrismParameters{}, at_rest);
+  const SolveOptions o = hierarchical(12, 1e-9);
+  EXPECT_EQ(prepared.solve(o).iterations, 0);
+  EXPECT_EQ(prepared.hierarchical_solver(), nullptr);
+  const std::vector<BodyState> before = prepared.body_states();
+  prepared.prepare(o);
+  ASSERT_NE(prepared.hierarchical_solver(), nullptr);
+  EXPECT_EQ(prepared.global_solver(), nullptr);
+  for (size_t b = 0; b < before.size(); ++b) {
+    EXPECT_EQ(prepared.body_states()[b].rotation, before[b].rotation);
+    EXPECT_EQ(prepared.body_states()[b].position, before[b].position);
+  }
+
+  for (int h = 0; h < int(s.handles.size()); ++h) {
+    prepared.set_handle_transform(h, s.handles[h].transform);
+    lazy.set_handle_transform(h, s.handles[h].transform);
+  }
+  const SolveReport a = prepared.solve(o), b = lazy.solve(o);
+  ASSERT_EQ(a.energies.size(), 12u);
+  EXPECT_EQ(a.energies, b.energies);  // to the last bit
+
+  Deformer global(s.mesh, PrismParameters{}, at_rest);
+  global.prepare(SolveOptions{});
+  EXPECT_NE(global.global_solver(), nullptr);
+}
+
 TEST(HierarchicalSolver, VCycleAndWCycleReachTheSameMinimum) {
   // Both cycle shapes, with and without reusing the coarse factorization, are descent methods
   // for the same energy: run to convergence they must agree with the flat solve.

@@ -840,6 +840,7 @@ struct DragRun {
   int faces = 0;
   int vertices = 0;
   double setup_seconds = 0.0;  // Deformer construction
+  double solver_setup_seconds = 0.0;  // Deformer::prepare: hierarchy, symbolic analysis
   std::vector<double> frame_seconds;
   std::vector<double> frame_energies;
   Breakdown first_frame;
@@ -885,6 +886,10 @@ void run_frames(Deformer& deformer, const DragCase& c, const SolveOptions& base,
                 DragRun& run) {
   set_targets(deformer, c, 0.0);  // every handle and force back at rest
   deformer.reset();
+  // The editor sets the solver up when the handles are made, before they are dragged.
+  const auto setup_start = Clock::now();
+  deformer.prepare(base);
+  run.solver_setup_seconds = seconds_since(setup_start);
 
   SolveOptions frame = base;
   frame.max_iterations = 1;
@@ -1144,8 +1149,9 @@ int run_bench_drag(const BenchDragArguments& args) {
       std::printf("\n\n");
       out["drag_factor_lag"] = drag.drag_factor_lag;
     }
-    std::printf("Drag (%d frames; deformer setup %.3f s, not in the frames)\n", args.frames,
-                drag.setup_seconds);
+    std::printf("Drag (%d frames; deformer setup %.3f s and solver setup %.3f s before the "
+                "drag, as in the editor, not in the frames)\n",
+                args.frames, drag.setup_seconds, drag.solver_setup_seconds);
     std::printf("  %8s %10s %10s %10s %10s %14s\n", "faces", "median ms", "max ms", "first ms",
                 "max 2..N", "final energy");
     std::printf("  %8d %10.2f %10.2f %10.2f %10.2f %14.6e\n\n", drag.faces, median_ms, max_ms,
@@ -1189,9 +1195,7 @@ int run_bench_drag(const BenchDragArguments& args) {
   print_breakdown_row("first frame", drag.first_frame, method);
   if (later > 0) print_breakdown_row("per frame, 2..N", drag.later_frames.per(later), method);
   if (!args.drag_only) print_breakdown_row("converge (total)", drag.converge_profile, method);
-  std::printf("  (one energy evaluation: %.2f ms; 'other' also holds building the solver on "
-              "first use)\n",
-              1e3 * drag.energy_evaluation_seconds);
+  std::printf("  (one energy evaluation: %.2f ms)\n", 1e3 * drag.energy_evaluation_seconds);
   std::printf("  (factorizations during the drag: %d in the foreground, %d on a background thread "
               "taking %.0f ms there, not counted above)\n\n",
               drag.foreground_factorizations, drag.background_factorizations,
@@ -1273,6 +1277,7 @@ int run_bench_drag(const BenchDragArguments& args) {
   out["load_seconds"] = c.load_seconds;
   out["subdivide_seconds"] = c.subdivide_seconds;
   out["setup_seconds"] = drag.setup_seconds;
+  out["solver_setup_seconds"] = drag.solver_setup_seconds;
   out["hierarchy_bodies"] = drag.level_bodies;
   out["drag_only"] = args.drag_only;
   out["machine"] = {{"cpu_model", cpu},

@@ -196,8 +196,8 @@ SolveReport Deformer::solve(const SolveOptions& options) {
       break;
     }
     double before = e, after = e;
+    prepare(options);
     if (options.method == SolveMethod::Global) {
-      if (!global_) global_ = std::make_unique<GlobalSolver>(system_);
       const GlobalStep step = global_->iterate(state_, exact);
       if (!step.decreased) {
         // No step along the Newton direction lowers the energy: a minimum to machine
@@ -211,8 +211,6 @@ SolveReport Deformer::solve(const SolveOptions& options) {
       exact = options.exact_hessian_below > 0 && step.step_scale == 1.0 &&
               (before - after) < options.exact_hessian_below * before;
     } else if (options.method == SolveMethod::Hierarchical) {
-      if (!hierarchical_)
-        hierarchical_ = std::make_unique<HierarchicalSolver>(system_, options.hierarchical);
       after = hierarchical_->cycle(state_, before);
     } else {
       local_sweep(system_, state_);
@@ -239,6 +237,13 @@ SolveReport Deformer::solve(const SolveOptions& options) {
   report.seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return report;
+}
+
+void Deformer::prepare(const SolveOptions& options) {
+  if (options.method == SolveMethod::Global && !global_)
+    global_ = std::make_unique<GlobalSolver>(system_);
+  else if (options.method == SolveMethod::Hierarchical && !hierarchical_)
+    hierarchical_ = std::make_unique<HierarchicalSolver>(system_, options.hierarchical);
 }
 
 std::vector<Vec3> Deformer::vertex_positions() const {

@@ -41,6 +41,19 @@ SolveMethod interactive_solve_method(SolverMethod requested, int n_faces) {
   return default_solve_method(size_t(n_faces));
 }
 
+namespace {
+
+bool solver_set_up(const Deformer& deformer, SolveMethod method) {
+  switch (method) {
+    case SolveMethod::Global: return deformer.global_solver() != nullptr;
+    case SolveMethod::Hierarchical: return deformer.hierarchical_solver() != nullptr;
+    case SolveMethod::Local: return true;  // nothing to set up
+  }
+  return true;
+}
+
+}  // namespace
+
 const char* phase_label(SolverPhase phase) {
   switch (phase) {
     case SolverPhase::Idle: return "idle";
@@ -214,6 +227,7 @@ void SolverWorker::build(const SolverProblem& problem) {
   {
     std::lock_guard<std::mutex> lock(mutex_);
     status_.build_seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    status_.solver_ready = false;
     status_.iterations = 0;
     status_.progress = 0.0;
   }
@@ -262,9 +276,14 @@ void SolverWorker::step() {
   try {
     report = deformer_->solve(options);
     if (first_solve_) {
+      // A problem at rest (new handles not moved yet) returns before the solver is set up:
+      // set it up now, while the user has not started dragging, so the drag's first frame
+      // does not pause for it.
+      if (report.iterations == 0) deformer_->prepare(options);
       first_solve_ = false;
       std::lock_guard<std::mutex> lock(mutex_);
       status_.detail.clear();
+      status_.solver_ready = solver_set_up(*deformer_, options.method);
     }
   } catch (const std::exception& e) {
     set_phase(SolverPhase::Failed, e.what());

@@ -74,6 +74,7 @@ struct SolverStatus {
   double build_seconds = 0.0;
   double progress = 0.0;     // rough convergence estimate in [0, 1]
   std::string detail;        // what a long first iteration does ("building the hierarchy")
+  bool solver_ready = false;  // the solver of the current problem is set up (no first-use pause)
   std::chrono::steady_clock::time_point phase_start;
   std::shared_ptr<const SolverGeometry> geometry;
 
