@@ -72,6 +72,10 @@ class GlobalSolver {
   // calls); a fresh one is made when it has none or its step does not lower the energy.
   GlobalStep iterate(std::vector<BodyState>& state, bool exact_hessian,
                      bool reuse_factorization = false);
+  // A Gauss-Newton factor of `state` for the next reusing iterations, without a step (a
+  // caller that knows where the next iterations start can make it ahead of time). Returns
+  // whether the factorization succeeded.
+  bool factorize_at(const std::vector<BodyState>& state);
   // How a reusing caller's factors are refreshed: a factor serves its first step and at most
   // `max_reuse` more (default: no limit), then the next step makes a fresh one. With
   // `background_lag` > 0 (supernodal factorizations only) the fresh one is made on a background

@@ -890,6 +890,7 @@ void run_frames(Deformer& deformer, const DragCase& c, const SolveOptions& base,
   const auto setup_start = Clock::now();
   deformer.prepare(base);
   run.solver_setup_seconds = seconds_since(setup_start);
+  const SolverClock after_setup = SolverClock::read(deformer);
 
   SolveOptions frame = base;
   frame.max_iterations = 1;
@@ -918,7 +919,8 @@ void run_frames(Deformer& deformer, const DragCase& c, const SolveOptions& base,
   if (const HierarchicalSolver* h = deformer.hierarchical_solver())
     run.drag_factor_lag = h->drag_factor_lag();
   const SolverClock after_drag = SolverClock::read(deformer);
-  run.foreground_factorizations = after_drag.newton.factorizations;
+  run.foreground_factorizations =
+      after_drag.newton.factorizations - after_setup.newton.factorizations;
   run.background_factorizations = after_drag.newton.background_factorizations;
   run.background_factorization_seconds = after_drag.newton.background_factorization;
 

@@ -196,7 +196,7 @@ SolveReport Deformer::solve(const SolveOptions& options) {
       break;
     }
     double before = e, after = e;
-    prepare(options);
+    make_solver(options);
     if (options.method == SolveMethod::Global) {
       const GlobalStep step = global_->iterate(state_, exact);
       if (!step.decreased) {
@@ -239,11 +239,23 @@ SolveReport Deformer::solve(const SolveOptions& options) {
   return report;
 }
 
-void Deformer::prepare(const SolveOptions& options) {
-  if (options.method == SolveMethod::Global && !global_)
+bool Deformer::make_solver(const SolveOptions& options) {
+  if (options.method == SolveMethod::Global && !global_) {
     global_ = std::make_unique<GlobalSolver>(system_);
-  else if (options.method == SolveMethod::Hierarchical && !hierarchical_)
+    return true;
+  }
+  if (options.method == SolveMethod::Hierarchical && !hierarchical_) {
     hierarchical_ = std::make_unique<HierarchicalSolver>(system_, options.hierarchical);
+    return true;
+  }
+  return false;
+}
+
+void Deformer::prepare(const SolveOptions& options) {
+  // A global iteration always makes a fresh factor; the hierarchy's coarse one can be made
+  // now, from the state the next cycle starts from.
+  if (make_solver(options) && hierarchical_ && options.method == SolveMethod::Hierarchical)
+    hierarchical_->prepare(state_);
 }
 
 std::vector<Vec3> Deformer::vertex_positions() const {

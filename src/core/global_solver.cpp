@@ -635,6 +635,21 @@ void GlobalSolver::set_factor_reuse(int max_reuse, int background_lag) {
 const GlobalSolverTimings& GlobalSolver::timings() const { return impl_->timings; }
 void GlobalSolver::reset_timings() { impl_->timings = {}; }
 
+bool GlobalSolver::factorize_at(const std::vector<BodyState>& state) {
+  Impl& m = *impl_;
+  if (m.n == 0) return false;
+  const auto start = Clock::now();
+  m.assemble(state);
+  m.timings.assembly += seconds_since(start);
+  double damping = m.damping_and_scale().first;
+  bool factored = m.factorize(damping, false, state);
+  for (int retry = 0; !factored && retry < 6; ++retry) {  // as a Gauss-Newton step retries
+    damping = std::max(damping * 1e3, 1e-12);
+    factored = m.factorize(damping, false, state);
+  }
+  return factored;
+}
+
 GlobalStep GlobalSolver::iterate(std::vector<BodyState>& state, bool exact_hessian,
                                 bool reuse_factorization) {
   Impl& m = *impl_;

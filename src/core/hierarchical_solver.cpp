@@ -289,6 +289,15 @@ void HierarchicalSolver::solve_level(int l) {
   }
 }
 
+void HierarchicalSolver::prepare(const std::vector<BodyState>& fine_state) {
+  if (levels_.empty()) return;
+  restrict_level(*levels_[0], fine_, fine_state, nullptr);
+  for (size_t l = 0; l + 1 < levels_.size(); ++l)
+    restrict_level(*levels_[l + 1], levels_[l]->system, levels_[l]->correction,
+                   &levels_[l]->orientation);
+  coarse_solver_->factorize_at(levels_.back()->correction);
+}
+
 double HierarchicalSolver::cycle(std::vector<BodyState>& fine_state, double energy_before) {
   // The first cycle after a restart is not recorded: a drag updates the targets before every
   // cycle, and would pay for bookkeeping it can never use.
