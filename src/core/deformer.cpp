@@ -254,7 +254,7 @@ bool Deformer::make_solver(const SolveOptions& options) {
 void Deformer::prepare(const SolveOptions& options) {
   // A global iteration always makes a fresh factor; the hierarchy's coarse one can be made
   // now, from the state the next cycle starts from.
-  if (make_solver(options) && hierarchical_ && options.method == SolveMethod::Hierarchical)
+  if (make_solver(options) && options.method == SolveMethod::Hierarchical)
     hierarchical_->prepare(state_);
 }
 

@@ -389,17 +389,13 @@ void GlobalSolver::Impl::assemble_gradient(const std::vector<BodyState>& state) 
     }
   };
   std::fill(grad.begin(), grad.end(), Vec6::Zero());
-  const size_t n_couplings = sys.couplings.size();
-  if (n_couplings < kSecondThreadFrom) {
-    add_couplings(0, n_couplings, grad);
-  } else {
-    second_half_grad.assign(grad.size(), Vec6::Zero());
-    const size_t middle = n_couplings / 2;
-    std::thread other([&] { add_couplings(middle, n_couplings, second_half_grad); });
-    add_couplings(0, middle, grad);
-    other.join();
+  const bool split = sys.couplings.size() >= kSecondThreadFrom;
+  if (split) second_half_grad.assign(grad.size(), Vec6::Zero());
+  on_two_threads(sys.couplings.size(), kSecondThreadFrom, [&](size_t begin, size_t end) {
+    add_couplings(begin, end, begin == 0 ? grad : second_half_grad);
+  });
+  if (split)
     for (size_t b = 0; b < grad.size(); ++b) grad[b] += second_half_grad[b];
-  }
   for (const RigidSystem::Spring& s : sys.springs) {
     if (!active[s.body]) continue;
     const BodyState& st = state[s.body];
