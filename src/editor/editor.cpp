@@ -183,6 +183,21 @@ const std::vector<Vec3>& Editor::positions() const {
 
 // --- Solver -----------------------------------------------------------------------------
 
+namespace {
+
+SolverTargets targets_of(const EditState& s) {
+  SolverTargets targets;
+  for (const HandleGroup& g : s.handles) {
+    if (g.mode == HandleMode::Spring)
+      targets.forces.push_back(g.pose.translate);
+    else
+      targets.handles.push_back(g.transform());
+  }
+  return targets;
+}
+
+}  // namespace
+
 void Editor::sync_solver() {
   if (!doc_) return;
   const EditState& s = doc_->state;
@@ -197,19 +212,18 @@ void Editor::sync_solver() {
     bool moved = false;
     for (size_t g = 0; g < s.handles.size(); ++g)
       moved = moved || !(s.handles[g].pose == sent_.handles[g].pose);
-    if (moved) {
-      SolverTargets targets;
-      for (const HandleGroup& g : s.handles) {
-        if (g.mode == HandleMode::Spring)
-          targets.forces.push_back(g.pose.translate);
-        else
-          targets.handles.push_back(g.transform());
-      }
-      worker_->submit_targets(std::move(targets));
-    }
+    if (moved) worker_->submit_targets(targets_of(s));
   }
   sent_ = s;
   sent_any_ = true;
+}
+
+bool Editor::continue_solving() {
+  if (!doc_ || status_.phase != SolverPhase::Stopped || !sent_any_) return false;
+  // The same targets again: a new request, whose iterations count from zero, warm-started
+  // from the state where the last one stopped.
+  worker_->submit_targets(targets_of(sent_));
+  return true;
 }
 
 void Editor::live_edit() {

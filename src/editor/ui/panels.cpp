@@ -386,6 +386,13 @@ void solver_section(Editor& e) {
                                                         : ImVec4(0.9f, 0.9f, 0.9f, 1);
   ImGui::TextColored(col, "%s", phase_label(st.phase));
   if (st.phase == SolverPhase::Failed) ImGui::TextWrapped("%s", st.error.c_str());
+  if (st.phase == SolverPhase::Stopped) {
+    ImGui::SameLine();
+    if (ImGui::SmallButton("Continue")) e.continue_solving();
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("Solve on from here for another %d iterations (solver.max_iterations)",
+                        e.document() ? e.document()->solver.max_iterations : 0);
+  }
   ImGui::ProgressBar(float(st.progress), ImVec2(-1, 0),
                      st.phase == SolverPhase::Building ? "building prisms"
                      : !st.detail.empty()               ? st.detail.c_str()
