@@ -247,6 +247,9 @@ struct GlobalSolver::Impl {
   // Tiny damping for rank-deficient systems, and the scale of exact-Hessian damping.
   std::pair<double, double> damping_and_scale() const;
   bool factorize(double damping, bool with_second_order, const std::vector<BodyState>& state);
+  // A Gauss-Newton factor, the damping raised while CHOLMOD finds the matrix not positive
+  // definite (a few times at most).
+  bool factorize_gauss_newton(double damping, const std::vector<BodyState>& state);
   void start_background(const std::vector<BodyState>& state, bool exact);  // after assemble()
   void finish_background();  // waits for the thread; its factor takes over if it succeeded
   Eigen::VectorXd solve(const Eigen::VectorXd& rhs);
@@ -480,6 +483,16 @@ bool GlobalSolver::Impl::factorize(double damping, bool with_second_order,
   return ok;
 }
 
+bool GlobalSolver::Impl::factorize_gauss_newton(double damping,
+                                                const std::vector<BodyState>& state) {
+  bool factored = factorize(damping, false, state);
+  for (int retry = 0; !factored && retry < 6; ++retry) {
+    damping = std::max(damping * 1e3, 1e-12);
+    factored = factorize(damping, false, state);
+  }
+  return factored;
+}
+
 void GlobalSolver::Impl::start_background(const std::vector<BodyState>& state, bool exact) {
   Background& job = background;
   if (!job.spare) {
@@ -637,13 +650,7 @@ bool GlobalSolver::factorize_at(const std::vector<BodyState>& state) {
   const auto start = Clock::now();
   m.assemble(state);
   m.timings.assembly += seconds_since(start);
-  double damping = m.damping_and_scale().first;
-  bool factored = m.factorize(damping, false, state);
-  for (int retry = 0; !factored && retry < 6; ++retry) {  // as a Gauss-Newton step retries
-    damping = std::max(damping * 1e3, 1e-12);
-    factored = m.factorize(damping, false, state);
-  }
-  return factored;
+  return m.factorize_gauss_newton(m.damping_and_scale().first, state);
 }
 
 GlobalStep GlobalSolver::iterate(std::vector<BodyState>& state, bool exact_hessian,
@@ -728,7 +735,7 @@ GlobalStep GlobalSolver::iterate(std::vector<BodyState>& state, bool exact_hessi
     m.timings.assembly += seconds_since(phase);
     fill_rhs();
   }
-  auto [damping, scale] = m.damping_and_scale();
+  const auto [damping, scale] = m.damping_and_scale();
 
   // One step of the given kind: factorize, solve, halve the step until the energy drops.
   auto try_step = [&](bool exact) {
@@ -741,13 +748,8 @@ GlobalStep GlobalSolver::iterate(std::vector<BodyState>& state, bool exact_hessi
         if (!factored) m.exact_damping = m.exact_damping == 0.0 ? 1e-4 : m.exact_damping * 30.0;
       }
       if (!factored) return false;
-    } else {
-      factored = m.factorize(damping, false, state);
-      for (int retry = 0; !factored && retry < 6; ++retry) {
-        damping = std::max(damping * 1e3, 1e-12);
-        factored = m.factorize(damping, false, state);
-      }
-      if (!factored) return false;
+    } else if (!m.factorize_gauss_newton(damping, state)) {
+      return false;
     }
     const bool ok = search(exact, 40);
     if (ok) ++m.steps_on_factor;
