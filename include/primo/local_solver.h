@@ -37,7 +37,7 @@ struct SweepPlan {
     double weight;     // sums over the joints between the two bodies:
     Vec3 own_mean;     // weight * own side's mean (body coordinates)
     Vec3 other_mean;   // weight * other side's mean (the other body's coordinates)
-    Mat3 cross;        // Coupling::cross for the own side
+    Mat3 cross;        // Coupling::cross_of the own side
   };
   std::vector<PackedJoint> joints;   // body b's neighbours: joint_begin[b] .. joint_begin[b + 1]
   std::vector<int> joint_begin;

@@ -43,11 +43,12 @@ struct RigidSystem {
     int body[2];
     double weight;
     PatchModes local[2];
-    // cross[s] = weight * sum over modes of (mode weight) own_s other^T, with own = local[s]
-    // and other = local[1 - s]: the constant part of Horn's covariance for side s. Kept in
-    // step with `local` by update_cross().
-    Mat3 cross[2];
+    // cross = weight * sum over modes of (mode weight) local[0] local[1]^T: the constant part
+    // of Horn's covariance for side 0; side 1's is its transpose (cross_of). Kept in step
+    // with `local` by update_cross().
+    Mat3 cross;
     void update_cross();
+    Mat3 cross_of(int side) const { return side == 0 ? cross : Mat3(cross.transpose()); }
   };
 
   // A zero-rest-length spring on a point of a body.

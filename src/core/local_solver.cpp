@@ -141,7 +141,7 @@ BodyState local_match(const RigidSystem& system, const std::vector<BodyState>& s
     const Vec3 own_mean = c.weight * c.local[side].mean;
     point_weight += c.weight;
     source_sum += own_mean;
-    add_joint(c.weight, own_mean, c.weight * c.local[1 - side].mean, c.cross[side],
+    add_joint(c.weight, own_mean, c.weight * c.local[1 - side].mean, c.cross_of(side),
               state[c.body[1 - side]], target_sum, cross);
   }
   add_springs(system, body, point_weight, source_sum, target_sum, cross);
@@ -241,7 +241,7 @@ void refresh_sweep_plan(SweepPlan& plan, const RigidSystem& system) {
         j.weight += c.weight;
         j.own_mean += own_mean;
         j.other_mean += c.weight * c.local[1 - side].mean;
-        j.cross += c.cross[side];
+        j.cross += c.cross_of(side);
         weight += c.weight;
         source += own_mean;
       }

@@ -29,14 +29,11 @@ void add_outer(Mat3& m, const Vec3& a, double w) { m.noalias() += w * a * a.tran
 void RigidSystem::Coupling::update_cross() {
   const PatchModes& own = local[0];
   const PatchModes& other = local[1];
-  cross[0].noalias() = own.mean * other.mean.transpose();
-  cross[0].noalias() += kModeWeightDu * own.du * other.du.transpose();
-  cross[0].noalias() += kModeWeightDv * own.dv * other.dv.transpose();
-  cross[0].noalias() += kModeWeightDuv * own.duv * other.duv.transpose();
-  cross[0] *= weight;
-  // The other side's sum is this one transposed: the same products, only the mode weight
-  // multiplies the other factor first (a rounding difference), at half the work.
-  cross[1] = cross[0].transpose();
+  cross.noalias() = own.mean * other.mean.transpose();
+  cross.noalias() += kModeWeightDu * own.du * other.du.transpose();
+  cross.noalias() += kModeWeightDv * own.dv * other.dv.transpose();
+  cross.noalias() += kModeWeightDuv * own.duv * other.duv.transpose();
+  cross *= weight;
 }
 
 double RigidSystem::coupling_energy(const Coupling& c, const BodyState& s0,
