@@ -914,10 +914,10 @@ void run_frames(Deformer& deformer, const DragCase& c, const SolveOptions& base,
     run.frame_seconds.push_back(std::chrono::duration<double>(t3 - t0).count());
     run.frame_energies.push_back(report.energy);
   }
-  if (const HierarchicalSolver* h = deformer.hierarchical_solver())
+  if (const HierarchicalSolver* h = deformer.hierarchical_solver()) {
     for (int l = 0; l < h->levels(); ++l) run.level_bodies.push_back(h->bodies(l));
-  if (const HierarchicalSolver* h = deformer.hierarchical_solver())
     run.drag_factor_lag = h->drag_factor_lag();
+  }
   const SolverClock after_drag = SolverClock::read(deformer);
   run.foreground_factorizations =
       after_drag.newton.factorizations - after_setup.newton.factorizations;
