@@ -11,9 +11,11 @@
 #include "editor.h"
 #include "primo/deformer.h"
 #include "primo/mesh_generators.h"
+#include "test_support.h"
 
 using namespace primo;
 using namespace primo::editor;
+using primo::test::max_distance;
 
 namespace {
 
@@ -101,12 +103,6 @@ struct Harness {
   }
   double diagonal() const { return editor.document()->topology->bbox_diagonal; }
 };
-
-double max_distance(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
-  double m = 0;
-  for (size_t i = 0; i < a.size(); ++i) m = std::max(m, (a[i] - b[i]).norm());
-  return m;
-}
 
 }  // namespace
 

@@ -8,9 +8,11 @@
 #include "primo/deformer.h"
 #include "primo/mesh_generators.h"
 #include "solver_worker.h"
+#include "test_support.h"
 
 using namespace primo;
 using namespace primo::editor;
+using primo::test::max_distance;
 
 namespace {
 
@@ -44,12 +46,6 @@ struct Bent {
     return d.vertex_positions();
   }
 };
-
-double max_distance(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
-  double m = 0;
-  for (size_t i = 0; i < a.size(); ++i) m = std::max(m, (a[i] - b[i]).norm());
-  return m;
-}
 
 }  // namespace
 

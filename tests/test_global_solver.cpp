@@ -13,6 +13,7 @@
 #include "test_support.h"
 
 using namespace primo;
+using primo::test::max_difference;
 
 namespace {
 
@@ -21,13 +22,6 @@ namespace {
 Deformer bent_cylinder(int segments = 16, int bands = 24) {
   const test::BentCylinder c = test::bent_cylinder(segments, bands, 90.0);
   return Deformer(c.mesh, PrismParameters{}, c.handles);
-}
-
-double max_difference(const std::vector<BodyState>& a, const std::vector<BodyState>& b) {
-  double d = 0.0;
-  for (size_t i = 0; i < a.size(); ++i)
-    d = std::max({d, (a[i].position - b[i].position).norm(), (a[i].rotation - b[i].rotation).norm()});
-  return d;
 }
 
 // Runs `steps` reusing iterations; returns the final state.

@@ -17,6 +17,7 @@
 
 using namespace primo;
 using primo::test::faces_where;
+using primo::test::max_distance;
 
 namespace {
 
@@ -53,12 +54,6 @@ SolveOptions hierarchical(int max_cycles, double tolerance, int coarsest_max_bod
   // several, so that intermediate levels are exercised too.
   o.hierarchical.hierarchy.coarsest_max_bodies = coarsest_max_bodies;
   return o;
-}
-
-double max_distance(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
-  double d = 0.0;
-  for (size_t i = 0; i < a.size(); ++i) d = std::max(d, (a[i] - b[i]).norm());
-  return d;
 }
 
 std::vector<Vec3> rest_points(const Mesh& mesh) {
@@ -253,10 +248,7 @@ TEST(HierarchicalSolver, PreparedAtRestTheFirstCycleReusesTheCoarseFactor) {
   ASSERT_NE(prepared.hierarchical_solver(), nullptr);
   EXPECT_EQ(prepared.global_solver(), nullptr);
   EXPECT_EQ(prepared.hierarchical_solver()->coarse_solver()->timings().factorizations, 1);
-  for (size_t b = 0; b < before.size(); ++b) {
-    EXPECT_EQ(prepared.body_states()[b].rotation, before[b].rotation);
-    EXPECT_EQ(prepared.body_states()[b].position, before[b].position);
-  }
+  EXPECT_EQ(test::max_difference(prepared.body_states(), before), 0.0);
 
   // The first frame of a drag: a tenth of the way.
   for (int h = 0; h < int(s.handles.size()); ++h) {

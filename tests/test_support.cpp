@@ -3,6 +3,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cstdlib>
 #include <filesystem>
@@ -125,6 +126,19 @@ BentCylinder bent_cylinder(int segments, int bands, double bend_deg, double twis
   c.handles = {bottom, top};
   c.diagonal = bounding_box_diagonal(c.mesh);
   return c;
+}
+
+double max_distance(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
+  double d = 0.0;
+  for (size_t i = 0; i < a.size(); ++i) d = std::max(d, (a[i] - b[i]).norm());
+  return d;
+}
+
+double max_difference(const std::vector<BodyState>& a, const std::vector<BodyState>& b) {
+  double d = 0.0;
+  for (size_t i = 0; i < a.size(); ++i)
+    d = std::max({d, (a[i].position - b[i].position).norm(), (a[i].rotation - b[i].rotation).norm()});
+  return d;
 }
 
 }  // namespace primo::test

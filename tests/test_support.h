@@ -33,8 +33,15 @@ CommandResult run_primo(const std::string& arguments);
 #include "primo/constraints.h"
 #include "primo/mesh.h"
 #include "primo/mesh_generators.h"
+#include "primo/rigid_system.h"
 
 namespace primo::test {
+
+// The largest distance between corresponding points of two lists of the same length.
+double max_distance(const std::vector<Vec3>& a, const std::vector<Vec3>& b);
+// The largest difference between corresponding body states: of positions, or of rotation
+// matrices (Frobenius norm).
+double max_difference(const std::vector<BodyState>& a, const std::vector<BodyState>& b);
 
 // Indices of the faces whose centroid satisfies `keep`.
 std::vector<int> faces_where(const Mesh& mesh, const std::function<bool(const Vec3&)>& keep);
