@@ -54,7 +54,7 @@ struct EditedCylinder {
     s.height_factor = paint_factors(nullptr, t.n_faces, faces_where(t, 0.3, 0.45), 0.4);
     s.height_factor = paint_factors(s.height_factor, t.n_faces, faces_where(t, 0.6, 0.65), 2.0);
     s.width_factor = paint_factors(nullptr, t.n_faces, faces_where(t, 0.2, 0.3), 0.9);
-    s.prisms = {0.8, 1.0, 0.25};
+    s.prisms = {0.8, HeightUnit::MeanEdgeLength, 1.0, 0.25};
   }
 };
 

@@ -135,6 +135,24 @@ TEST(SessionFile, RoundTripIsExact) {
   EXPECT_NE(text.find("\"format\": \"primo-session/1\""), std::string::npos);
 }
 
+TEST(SessionFile, PrismsKeepTheirHeightUnit) {
+  const Recorded r = record_bar_session("bar.obj");
+  const std::string text = session_to_json(r.session, "");
+  // The editor's default material is written as half_thickness (a fraction of the diagonal).
+  ASSERT_NE(text.find("\"half_thickness\""), std::string::npos);
+  // A session of the format's height in mean edge lengths reads back in that unit.
+  std::string legacy = text;
+  for (size_t at; (at = legacy.find("\"half_thickness\"")) != std::string::npos;)
+    legacy.replace(at, 16, "\"height\"");
+  const Session back = parse_session(legacy, "s.json");
+  EXPECT_EQ(back.initial.prisms.height_unit, HeightUnit::MeanEdgeLength);
+  EXPECT_EQ(back.initial.prisms.height, r.session.initial.prisms.height);
+  // Both keys at once are an error naming where.
+  std::string both = text;
+  both.insert(both.find("\"half_thickness\""), "\"height\": 1, ");
+  EXPECT_NE(error_of([&] { parse_session(both, "s.json"); }).find("exactly one of"), std::string::npos);
+}
+
 TEST(SessionFile, ErrorsNameTheEvent) {
   const Recorded r = record_bar_session("bar.obj");
   const std::string text = session_to_json(r.session, "");

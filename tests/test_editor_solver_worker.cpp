@@ -94,7 +94,7 @@ TEST(EditorSolverWorker, RebuildKeepsThePoseAndEnergyMapSumsToTheEnergy) {
   EXPECT_EQ(first.geometry->prism_corners.size(), 6 * b.topology->face_vertices.size());
   // A change of stiffness rebuilds the prisms; the solve starts from the current pose, so it
   // needs few iterations.
-  b.state.prisms.height = 0.9;
+  b.state.prisms.height *= 0.9;
   w.submit_problem(b.problem());
   ASSERT_TRUE(w.wait_idle(60));
   EXPECT_EQ(w.status().phase, SolverPhase::Settled);

@@ -14,6 +14,8 @@
 #include "primo/error.h"
 #include "primo/geometry.h"
 #include "primo/mesh.h"
+#include "primo/mesh_generators.h"
+#include "primo/prism_layer.h"
 #include "primo/scenario.h"
 #include "test_support.h"
 
@@ -680,6 +682,50 @@ TEST(ScenarioResolve, ForcesAndSolverAreCarriedOver) {
   EXPECT_EQ(r.solver.tolerance, 1e-6);
   EXPECT_EQ(r.solver.method, SolverMethod::Global);
   EXPECT_TRUE(r.handles.empty());
+}
+
+// --- resolution-independent thickness (our extension: prisms.half_thickness) -------------
+
+TEST(ScenarioHalfThickness, IsAFractionOfTheDiagonalAndRoundTrips) {
+  const std::string text = R"({"format": "primo-scenario/1", "mesh": "m.obj",
+                               "prisms": {"half_thickness": 0.04, "width": 0.9}})";
+  const Scenario s = parse_scenario(text, "");
+  EXPECT_EQ(s.prisms.height, 0.04);
+  EXPECT_EQ(s.prisms.height_unit, HeightUnit::Diagonal);
+  const std::string json = scenario_to_json(s);
+  EXPECT_NE(json.find("\"half_thickness\""), std::string::npos) << json;
+  EXPECT_EQ(json.find("\"height\""), std::string::npos) << json;
+  const Scenario again = parse_scenario(json, "");
+  EXPECT_EQ(again.prisms.height, 0.04);
+  EXPECT_EQ(again.prisms.height_unit, HeightUnit::Diagonal);
+  // The format's key keeps its meaning, and is what a file without either key gets.
+  EXPECT_EQ(parse_scenario(scenario_text(), "").prisms.height_unit, HeightUnit::MeanEdgeLength);
+}
+
+TEST(ScenarioHalfThickness, BothKeysOrANegativeValueAreErrors) {
+  expect_contains(error_of([] {
+                    parse_scenario(R"({"format": "primo-scenario/1", "mesh": "m.obj",
+                      "prisms": {"height": 1, "half_thickness": 0.05}})", "s.json");
+                  }),
+                  {"s.json", "prisms", "height", "half_thickness"});
+  expect_contains(error_of([] {
+                    parse_scenario(R"({"format": "primo-scenario/1", "mesh": "m.obj",
+                      "prisms": {"half_thickness": -0.05}})", "s.json");
+                  }),
+                  {"s.json", "prisms.half_thickness"});
+}
+
+TEST(ScenarioHalfThickness, SetsTheLayerToThatFractionOfTheDiagonal) {
+  const Mesh mesh = make_cylinder(0.25, 2.0, 12, 16, FaceShape::Quads);
+  PrismParameters p = PrismParameters::product_default();
+  p.height = 0.05;
+  const PrismLayer layer = build_prism_layer(mesh, p);
+  // Every corner offset (blend 0: along the unit vertex normal) is 5% of the diagonal long.
+  for (const Vec3& offset : layer.corner_offset)
+    EXPECT_NEAR(offset.norm(), 0.05 * layer.bounding_box_diagonal, 1e-12);
+  p.height_unit = HeightUnit::MeanEdgeLength;
+  p.height = 1.0;
+  EXPECT_NEAR(build_prism_layer(mesh, p).corner_offset[0].norm(), layer.mean_edge_length, 1e-12);
 }
 
 }  // namespace

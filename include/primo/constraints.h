@@ -24,14 +24,38 @@ struct RigidTransform {
 RigidTransform make_rigid_transform(const Vec3& translate, const Vec3& axis, double angle_deg,
                                     const Vec3& center);
 
+// What a prism height is a multiple of (docs/scenario-format.md, "prisms").
+enum class HeightUnit {
+  // `prisms.height`: the format's and the paper's unit. The layer thins as the mesh is
+  // refined, so the same model at 4x the faces bends more easily (a softer material).
+  MeanEdgeLength,
+  // `prisms.half_thickness`: a fraction of the bounding-box diagonal, so the material is the
+  // same at every resolution.
+  Diagonal,
+};
+
+// The half-thickness the editor gives a new mesh and the quality benchmark uses, as a
+// fraction of the bounding-box diagonal; chosen by measurement (docs/quality.md, "Default
+// material"). Scenario files that set neither key keep the format's `height` 1.
+inline constexpr double kDefaultHalfThickness = 0.06;
+
 struct PrismParameters {
-  double height = 1.0;        // half-thickness as a multiple of the mean edge length
+  double height = 1.0;        // half-thickness as a multiple of `height_unit`
+  HeightUnit height_unit = HeightUnit::MeanEdgeLength;
   double normal_blend = 0.0;  // beta: 0 thin shell, 1 thin plate, < 0 enhances detail
   double width = 1.0;         // scale of every prism about its face centroid
   // Per-face multipliers from regions (empty means all 1). Height factors act per vertex as
   // the minimum over the vertex's incident faces.
   std::vector<double> face_height_factor;
   std::vector<double> face_width_factor;
+
+  // The product's default material (kDefaultHalfThickness), as opposed to the format's.
+  static PrismParameters product_default() {
+    PrismParameters p;
+    p.height = kDefaultHalfThickness;
+    p.height_unit = HeightUnit::Diagonal;
+    return p;
+  }
 };
 
 enum class Fix {

@@ -31,10 +31,30 @@ inline SolveMethod default_solve_method(size_t n_faces) {
   return n_faces > kHierarchicalFromFaces ? SolveMethod::Hierarchical : SolveMethod::Global;
 }
 
+// How a solve reaches targets that jumped far from the ones the state was solved for.
+// A one-step solve of a large edit (a handle turned 180 degrees from rest) starts far from
+// any minimum and often lands in a poor one: the tube of the paper's Figure 2 bent 180 degrees
+// in one step collapses flat, where the same edit made by dragging stays round. So a jump
+// is followed as a drag would follow it: the targets move from where the state was solved
+// to where they were set in sub-steps no larger than these, each solved loosely and warm-
+// started, and the last one to the full tolerance (docs/engine.md, "Large steps").
+struct PathOptions {
+  bool enabled = true;
+  double max_turn_deg = 15.0;  // largest rotation of any handle per sub-step
+  double max_move = 0.1;       // largest move of a handle centroid or force offset per
+                               // sub-step, as a fraction of the bounding-box diagonal
+  double step_tolerance = 1e-2;  // relative energy change that ends a sub-step
+  int max_step_iterations = 2;   // and at most this many iterations per sub-step
+  // Sub-step iterations per call (the editor's solver thread passes its batch size): a path
+  // left unfinished is resumed by the next call.
+  int max_iterations = 100000;
+};
+
 struct SolveOptions {
   SolveMethod method = SolveMethod::Global;
-  int max_iterations = 100;
+  int max_iterations = 100;  // iterations at the final targets (path sub-steps not counted)
   double tolerance = 1e-8;  // stop when an iteration lowers E by less than tolerance * E
+  PathOptions path;
   // Global only: switch to exact-Hessian Newton steps once Gauss-Newton takes full steps
   // that lower the energy by less than this fraction (0 disables exact steps).
   double exact_hessian_below = 1e-1;
@@ -50,7 +70,9 @@ struct SolveReport {
   double energy = 0.0;
   double seconds = 0.0;
   int exact_newton_steps = 0;
-  std::vector<double> energies;  // after each iteration
+  int path_steps = 0;       // sub-steps of a large jump solved in this call (PathOptions)
+  int path_iterations = 0;  // iterations spent on them (not in `iterations`)
+  std::vector<double> energies;  // after each iteration at the final targets
   std::string stop_reason;
 };
 
@@ -111,11 +133,25 @@ class Deformer {
   // Every free prism back to rest, every handle to its current full transform.
   void reset();
 
+  // Whether a solve still has sub-steps to take before the targets (PathOptions): true
+  // after targets jumped far, until a solve has walked the whole path.
+  bool path_pending(const PathOptions& options) const;
+
  private:
   BodyState handle_state(int handle) const;
+  // Moves a handle body as set_handle_transform does, to `transform` instead of the target.
+  void place_handle(int handle, const RigidTransform& transform);
+  // Sub-steps from the targets the state was solved for to the set ones (1: none needed).
+  int path_steps_needed(const PathOptions& options) const;
+  // Walks the path within the call's budget; false when the budget ran out first.
+  bool follow_path(const SolveOptions& options, SolveReport& report);
+  // One iteration of `options.method` from energy e; returns the energy after, or nullopt
+  // when no step lowers the energy (a minimum to machine precision).
+  std::optional<double> iterate(const SolveOptions& options, double e, SolveReport& report);
   bool make_solver(const SolveOptions& options);  // whether it was made now
   double body_energy(int body) const;  // of the joints and springs on one body
   void rebuild_springs();
+  void place_springs(const std::vector<Vec3>& offsets);  // one target offset per force
 
   std::vector<Vec3> rest_points_;
   PrismLayer layer_;
@@ -135,6 +171,11 @@ class Deformer {
   // recomputing the handle's own joints only. A drag frame at 240k faces saves a pass over
   // all joints (about 5 ms of a 100 ms frame).
   std::optional<double> known_energy_;
+  // The targets the state was last solved for (the start of a path): rest and zero offsets
+  // at first, the set targets after every solve, the targets of the sub-step reached when a
+  // path is interrupted.
+  std::vector<RigidTransform> solved_transforms_;
+  std::vector<Vec3> solved_offsets_;
 };
 
 }  // namespace primo

@@ -21,6 +21,7 @@ struct DeformArguments {
   std::string output;
   std::string stats;
   std::string solver;
+  bool one_step = false;
 };
 
 SolveMethod choose_method(const std::string& flag, SolverMethod from_scenario, size_t faces) {
@@ -56,6 +57,9 @@ int run_deform(const DeformArguments& args) {
   options.method = choose_method(args.solver, resolved.solver.method, mesh.n_faces());
   options.max_iterations = resolved.solver.max_iterations;
   options.tolerance = resolved.solver.tolerance;
+  // By default a large edit is followed in sub-steps (docs/engine.md, "Large steps");
+  // --one-step solves from the format's starting state directly.
+  options.path.enabled = !args.one_step;
   const SolveReport report = deformer.solve(options);
 
   const Mesh result = deformer.deformed_mesh(mesh);
@@ -79,6 +83,8 @@ int run_deform(const DeformArguments& args) {
         {"vertices", mesh.n_vertices()},
         {"solver", method_name(options.method)},
         {"exact_newton_steps", report.exact_newton_steps},
+        {"path_steps", report.path_steps},
+        {"path_iterations", report.path_iterations},
         {"energies", report.energies},
     };
     stats_text = stats.dump(2) + "\n";
@@ -112,6 +118,9 @@ Command register_deform(CLI::App& app) {
                   "global, local or hierarchical (default: solver.method of the scenario, else "
                   "global up to 20,000 faces and hierarchical above)")
       ->check(CLI::IsMember({"global", "local", "hierarchical"}));
+  cmd->add_flag("--one-step", args->one_step,
+                "Solve from the scenario format's starting state (free prisms at rest, handles at "
+                "their targets) in one step, instead of following large edits in sub-steps");
   return {cmd, [args] { return run_deform(*args); }};
 }
 

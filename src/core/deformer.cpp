@@ -1,6 +1,8 @@
 #include "primo/deformer.h"
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <string>
 
 #include "primo/error.h"
@@ -20,6 +22,23 @@ BodyKind body_kind(Fix fix) {
 
 std::string handle_label(const Handle& h, size_t index) {
   return h.name.empty() ? "handles[" + std::to_string(index) + "]" : "handle '" + h.name + "'";
+}
+
+// The transform a fraction s of the way from `from` to `to`, for a body whose rest centre is
+// `center`: the centre moves on the straight line, the body turns on the shorter great
+// circle about it, as a handle dragged and turned with the gizmo does.
+RigidTransform interpolate(const RigidTransform& from, const RigidTransform& to,
+                           const Vec3& center, double s) {
+  const Eigen::Quaterniond q0(from.rotation), q1(to.rotation);
+  RigidTransform t;
+  t.rotation = q0.slerp(s, q1).toRotationMatrix();
+  const Vec3 c = (1.0 - s) * from.apply(center) + s * to.apply(center);
+  t.translation = c - t.rotation * center;
+  return t;
+}
+
+double turn_degrees(const RigidTransform& from, const RigidTransform& to) {
+  return Eigen::AngleAxisd(to.rotation * from.rotation.transpose()).angle() * 180.0 / M_PI;
 }
 
 }  // namespace
@@ -86,7 +105,9 @@ Deformer::Deformer(Deformer&& other) noexcept
       settled_method_(other.settled_method_),
       settled_tolerance_(other.settled_tolerance_),
       exact_newton_(other.exact_newton_),
-      known_energy_(other.known_energy_) {
+      known_energy_(other.known_energy_),
+      solved_transforms_(std::move(other.solved_transforms_)),
+      solved_offsets_(std::move(other.solved_offsets_)) {
   other.global_.reset();
   other.hierarchical_.reset();
 }
@@ -103,6 +124,8 @@ Deformer& Deformer::operator=(Deformer&& other) noexcept {
   settled_tolerance_ = other.settled_tolerance_;
   exact_newton_ = other.exact_newton_;
   known_energy_ = other.known_energy_;
+  solved_transforms_ = std::move(other.solved_transforms_);
+  solved_offsets_ = std::move(other.solved_offsets_);
   global_.reset();
   hierarchical_.reset();
   other.global_.reset();
@@ -111,13 +134,20 @@ Deformer& Deformer::operator=(Deformer&& other) noexcept {
 }
 
 void Deformer::rebuild_springs() {
+  std::vector<Vec3> offsets;
+  for (const Force& force : forces_) offsets.push_back(force.target_offset);
+  place_springs(offsets);
+}
+
+void Deformer::place_springs(const std::vector<Vec3>& offsets) {
   std::vector<FaceSpring> springs;
-  for (const Force& force : forces_) {
+  for (size_t i = 0; i < forces_.size(); ++i) {
+    const Force& force = forces_[i];
     double total_area = 0.0;
     for (int f : force.faces) total_area += layer_.face_area[f];
     if (!(total_area > 0.0)) continue;
     for (int f : force.faces)
-      springs.push_back({f, layer_.face_centroid[f] + force.target_offset,
+      springs.push_back({f, layer_.face_centroid[f] + offsets[i],
                          force.stiffness * layer_.face_area[f] / total_area});
   }
   set_springs(system_, layer_, springs);
@@ -131,6 +161,10 @@ BodyState Deformer::handle_state(int handle) const {
 void Deformer::reset() {
   problem_changed();
   exact_newton_ = false;
+  // Free prisms at rest are the solution for handles at rest: a path starts there.
+  solved_transforms_.assign(handles_.size(), RigidTransform::identity());
+  solved_offsets_.assign(forces_.size(), Vec3::Zero());
+  rebuild_springs();
   state_.resize(system_.n_bodies());
   for (int b = 0; b < system_.n_bodies(); ++b)
     state_[b] = b < int(handles_.size()) ? handle_state(b)
@@ -140,10 +174,14 @@ void Deformer::reset() {
 void Deformer::set_handle_transform(int handle, const RigidTransform& transform) {
   if (handle < 0 || handle >= int(handles_.size())) throw Error("no such handle");
   handles_[handle].transform = transform;
+  place_handle(handle, transform);
+}
+
+void Deformer::place_handle(int handle, const RigidTransform& transform) {
   std::optional<double> known = known_energy_;
   if (known) *known -= body_energy(handle);
   problem_changed();
-  const BodyState target = handle_state(handle);
+  const BodyState target{transform.rotation, transform.apply(system_.bodies[handle].rest_center)};
   BodyState& s = state_[handle];
   switch (handles_[handle].fix) {
     case Fix::All: s = target; break;
@@ -178,16 +216,24 @@ SolveReport Deformer::solve(const SolveOptions& options) {
   SolveReport report;
   const double diagonal = layer_.bounding_box_diagonal;
   const double energy_floor = 1e-14 * diagonal * diagonal;
-  double e = energy();  // from the last solve when known: a drag frame skips a pass
-  report.initial_energy = e;
-  report.energy = e;
+  report.initial_energy = energy();  // from the last solve when known: a drag frame skips a pass
+  report.energy = report.initial_energy;
   if (settled_ && settled_method_ == options.method && options.tolerance >= settled_tolerance_) {
     report.converged = true;
     report.stop_reason = "already converged";
     return report;
   }
+  auto finish = [&](SolveReport& r) {
+    r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return r;
+  };
+  if (!follow_path(options, report)) {
+    report.energy = energy();
+    report.stop_reason = "path budget";
+    return finish(report);
+  }
+  double e = energy();
   report.stop_reason = "max_iterations";
-  bool& exact = exact_newton_;
 
   for (int it = 0; it < options.max_iterations; ++it) {
     if (e <= energy_floor) {
@@ -195,31 +241,17 @@ SolveReport Deformer::solve(const SolveOptions& options) {
       report.stop_reason = "energy floor";
       break;
     }
-    double before = e, after = e;
-    make_solver(options);
-    if (options.method == SolveMethod::Global) {
-      const GlobalStep step = global_->iterate(state_, exact);
-      if (!step.decreased) {
-        // No step along the Newton direction lowers the energy: a minimum to machine
-        // precision.
-        report.converged = true;
-        report.stop_reason = "no further decrease";
-        break;
-      }
-      after = step.energy_after;
-      if (step.exact_hessian) ++report.exact_newton_steps;
-      exact = options.exact_hessian_below > 0 && step.step_scale == 1.0 &&
-              (before - after) < options.exact_hessian_below * before;
-    } else if (options.method == SolveMethod::Hierarchical) {
-      after = hierarchical_->cycle(state_, before);
-    } else {
-      local_sweep(system_, state_);
-      after = energy();
+    const double before = e;
+    const std::optional<double> after = iterate(options, before, report);
+    if (!after) {
+      report.converged = true;
+      report.stop_reason = "no further decrease";
+      break;
     }
     ++report.iterations;
-    report.energies.push_back(after);
-    e = after;
-    if (before - after < options.tolerance * before) {
+    report.energies.push_back(*after);
+    e = *after;
+    if (before - *after < options.tolerance * before) {
       report.converged = true;
       report.stop_reason = "tolerance";
       break;
@@ -234,9 +266,91 @@ SolveReport Deformer::solve(const SolveOptions& options) {
   settled_ = report.converged;
   settled_method_ = options.method;
   settled_tolerance_ = options.tolerance;
-  report.seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  return report;
+  for (size_t h = 0; h < handles_.size(); ++h) solved_transforms_[h] = handles_[h].transform;
+  for (size_t f = 0; f < forces_.size(); ++f) solved_offsets_[f] = forces_[f].target_offset;
+  return finish(report);
+}
+
+std::optional<double> Deformer::iterate(const SolveOptions& options, double e,
+                                        SolveReport& report) {
+  make_solver(options);
+  if (options.method == SolveMethod::Global) {
+    const GlobalStep step = global_->iterate(state_, exact_newton_);
+    // No step along the Newton direction lowers the energy: a minimum to machine precision.
+    if (!step.decreased) return std::nullopt;
+    if (step.exact_hessian) ++report.exact_newton_steps;
+    exact_newton_ = options.exact_hessian_below > 0 && step.step_scale == 1.0 &&
+                    (e - step.energy_after) < options.exact_hessian_below * e;
+    return step.energy_after;
+  }
+  if (options.method == SolveMethod::Hierarchical) return hierarchical_->cycle(state_, e);
+  local_sweep(system_, state_);
+  return system_.energy(state_);
+}
+
+int Deformer::path_steps_needed(const PathOptions& options) const {
+  if (!options.enabled) return 1;
+  const double move = options.max_move * layer_.bounding_box_diagonal;
+  double steps = 1.0;
+  for (size_t h = 0; h < handles_.size(); ++h) {
+    const RigidTransform& from = solved_transforms_[h];
+    const RigidTransform& to = handles_[h].transform;
+    const Vec3& center = system_.bodies[h].rest_center;
+    const Fix fix = handles_[h].fix;
+    if (fix != Fix::Position)
+      steps = std::max(steps, turn_degrees(from, to) / options.max_turn_deg);
+    if (fix != Fix::Orientation)
+      steps = std::max(steps, (to.apply(center) - from.apply(center)).norm() / move);
+  }
+  for (size_t f = 0; f < forces_.size(); ++f)
+    steps = std::max(steps, (forces_[f].target_offset - solved_offsets_[f]).norm() / move);
+  // Not finite only for non-finite targets, which the solve will reject on its own.
+  return std::isfinite(steps) ? int(std::min(std::ceil(steps - 1e-9), 1e6)) : 1;
+}
+
+bool Deformer::path_pending(const PathOptions& options) const {
+  return path_steps_needed(options) > 1;
+}
+
+bool Deformer::follow_path(const SolveOptions& options, SolveReport& report) {
+  const int steps = path_steps_needed(options.path);
+  if (steps <= 1) return true;
+  const std::vector<RigidTransform> from = solved_transforms_;
+  const std::vector<Vec3> from_offsets = solved_offsets_;
+  int budget = options.path.max_iterations;
+  for (int k = 1; k < steps; ++k) {
+    if (budget <= 0) return false;  // resumed from solved_transforms_ by the next call
+    const double s = double(k) / steps;
+    for (size_t h = 0; h < handles_.size(); ++h) {
+      solved_transforms_[h] =
+          interpolate(from[h], handles_[h].transform, system_.bodies[h].rest_center, s);
+      place_handle(int(h), solved_transforms_[h]);
+    }
+    if (!forces_.empty()) {
+      for (size_t f = 0; f < forces_.size(); ++f)
+        solved_offsets_[f] = (1.0 - s) * from_offsets[f] + s * forces_[f].target_offset;
+      place_springs(solved_offsets_);
+      problem_changed();
+    }
+    double e = energy();
+    for (int it = 0; it < options.path.max_step_iterations && budget > 0; ++it, --budget) {
+      const std::optional<double> after = iterate(options, e, report);
+      if (!after) break;
+      ++report.path_iterations;
+      const bool small = e - *after < options.path.step_tolerance * e;
+      e = *after;
+      known_energy_ = e;
+      if (small) break;
+    }
+    ++report.path_steps;
+  }
+  // The final targets: the regular solve takes it from here.
+  for (size_t h = 0; h < handles_.size(); ++h) place_handle(int(h), handles_[h].transform);
+  if (!forces_.empty()) {
+    rebuild_springs();
+    problem_changed();
+  }
+  return true;
 }
 
 bool Deformer::make_solver(const SolveOptions& options) {
@@ -303,6 +417,9 @@ void Deformer::set_face_motions(const std::vector<RigidTransform>& motions) {
     state_[b].rotation = m.rotation;
     state_[b].position = m.apply(body.rest_center);
   }
+  // The state given is the one for the targets set now: no path to follow from rest.
+  for (size_t h = 0; h < handles_.size(); ++h) solved_transforms_[h] = handles_[h].transform;
+  for (size_t f = 0; f < forces_.size(); ++f) solved_offsets_[f] = forces_[f].target_offset;
 }
 
 }  // namespace primo

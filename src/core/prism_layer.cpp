@@ -50,12 +50,15 @@ PrismLayer build_prism_layer(const Mesh& mesh, const PrismParameters& params) {
 
   // A vertex's height factor is the minimum over its incident faces, so that with blend 0
   // and width 1 both prisms of a joint share its corners at rest.
+  const double unit_length = params.height_unit == HeightUnit::Diagonal
+                                 ? layer.bounding_box_diagonal
+                                 : layer.mean_edge_length;
   std::vector<double> vertex_height(mesh.n_vertices(), 1.0);
   for (auto v : mesh.vertices()) {
     double factor = std::numeric_limits<double>::infinity();
     for (auto f : v.faces()) factor = std::min(factor, factor_or_one(params.face_height_factor, f.idx()));
     if (std::isfinite(factor)) vertex_height[v.idx()] = factor;
-    vertex_height[v.idx()] *= params.height * layer.mean_edge_length;
+    vertex_height[v.idx()] *= params.height * unit_length;
   }
 
   const double beta = params.normal_blend;

@@ -311,9 +311,20 @@ class ScenarioReader {
 void read_prisms(const ScenarioReader& in, const Json& value, PrismParameters& prisms) {
   const std::string path = "prisms";
   in.expect_object(value, path);
-  in.expect_only_keys(value, path, {"height", "normal_blend", "width"});
-  if (const Json* v = in.optional(value, "height"))
-    prisms.height = in.number_at_least(*v, "prisms.height", 0.0);  // 0: a flat membrane
+  in.expect_only_keys(value, path, {"height", "half_thickness", "normal_blend", "width"});
+  const Json* height = in.optional(value, "height");
+  const Json* half_thickness = in.optional(value, "half_thickness");
+  if (height && half_thickness)
+    in.fail("prisms", "sets both height and half_thickness; give one (half_thickness is the "
+                      "resolution-independent form)");
+  if (height) {
+    prisms.height = in.number_at_least(*height, "prisms.height", 0.0);  // 0: a flat membrane
+    prisms.height_unit = HeightUnit::MeanEdgeLength;
+  }
+  if (half_thickness) {
+    prisms.height = in.number_at_least(*half_thickness, "prisms.half_thickness", 0.0);
+    prisms.height_unit = HeightUnit::Diagonal;
+  }
   if (const Json* v = in.optional(value, "normal_blend"))
     prisms.normal_blend = in.number(*v, "prisms.normal_blend");
   if (const Json* v = in.optional(value, "width"))
@@ -526,7 +537,9 @@ std::string scenario_to_json(const Scenario& scenario) {
   root["format"] = kFormat;
   root["mesh"] = scenario.mesh;
   const PrismParameters& prisms = scenario.prisms;
-  root["prisms"] = Json{{"height", finite(prisms.height, "prisms.height")},
+  const bool diagonal = prisms.height_unit == HeightUnit::Diagonal;
+  const char* height_key = diagonal ? "half_thickness" : "height";
+  root["prisms"] = Json{{height_key, finite(prisms.height, std::string("prisms.") + height_key)},
                         {"normal_blend", finite(prisms.normal_blend, "prisms.normal_blend")},
                         {"width", finite(prisms.width, "prisms.width")}};
 

@@ -59,6 +59,7 @@ bool operator==(const EditState& a, const EditState& b) {
 DeformationInputs deformation_inputs(const EditState& state) {
   DeformationInputs in;
   in.params.height = state.prisms.height;
+  in.params.height_unit = state.prisms.height_unit;
   in.params.width = state.prisms.width;
   in.params.normal_blend = state.prisms.normal_blend;
   if (state.height_factor) in.params.face_height_factor = *state.height_factor;

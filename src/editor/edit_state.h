@@ -15,12 +15,17 @@
 
 namespace primo::editor {
 
+// A new mesh gets the product's default material: a half-thickness that is a fraction of the
+// bounding-box diagonal, the same at every resolution. A scenario that sets `prisms.height`
+// keeps its unit (mean edge lengths), and the panel shows it as such.
 struct PrismSettings {
-  double height = 1.0;        // prisms.height: half-thickness / mean edge length
+  double height = kDefaultHalfThickness;          // half-thickness in `height_unit`
+  HeightUnit height_unit = HeightUnit::Diagonal;  // prisms.half_thickness or prisms.height
   double width = 1.0;         // prisms.width
   double normal_blend = 0.0;  // prisms.normal_blend (shell 0 .. plate 1)
   bool operator==(const PrismSettings& o) const {
-    return height == o.height && width == o.width && normal_blend == o.normal_blend;
+    return height == o.height && height_unit == o.height_unit && width == o.width &&
+           normal_blend == o.normal_blend;
   }
 };
 

@@ -46,6 +46,7 @@ Scenario export_scenario(const EditState& state, const std::string& mesh_path,
   Scenario s;
   s.mesh = mesh_reference(mesh_path, scenario_path);
   s.prisms.height = state.prisms.height;
+  s.prisms.height_unit = state.prisms.height_unit;
   s.prisms.width = state.prisms.width;
   s.prisms.normal_blend = state.prisms.normal_blend;
   s.solver = solver;
@@ -91,6 +92,7 @@ EditState import_scenario(const Scenario& scenario, const ResolvedScenario& reso
                           const MeshTopology& topology) {
   EditState state = initial_edit_state(topology.n_faces);
   state.prisms.height = scenario.prisms.height;
+  state.prisms.height_unit = scenario.prisms.height_unit;
   state.prisms.width = scenario.prisms.width;
   state.prisms.normal_blend = scenario.prisms.normal_blend;
   state.height_factor = factor_array(resolved.prisms.face_height_factor);

@@ -145,17 +145,26 @@ std::vector<HandleGroup> parse_groups(const json& j, const std::string& path) {
   return out;
 }
 
+// The height under the scenario format's key for its unit (docs/scenario-format.md).
+const char* height_key(HeightUnit unit) {
+  return unit == HeightUnit::Diagonal ? "half_thickness" : "height";
+}
+
 json prisms_json(const PrismSettings& p) {
-  return {{"height", p.height}, {"width", p.width}, {"normal_blend", p.normal_blend}};
+  return {{height_key(p.height_unit), p.height}, {"width", p.width}, {"normal_blend", p.normal_blend}};
 }
 
 PrismSettings parse_prisms(const json& j, const std::string& path) {
-  check_object(j, path, {"height", "width", "normal_blend"});
+  check_object(j, path, {"height", "half_thickness", "width", "normal_blend"});
   PrismSettings p;
-  p.height = number(member(j, path, "height"), at(path, "height"));
+  if (j.contains("height") == j.contains("half_thickness"))
+    fail(path, "expected exactly one of \"height\" and \"half_thickness\"");
+  p.height_unit = j.contains("height") ? HeightUnit::MeanEdgeLength : HeightUnit::Diagonal;
+  const char* key = height_key(p.height_unit);
+  p.height = number(member(j, path, key), at(path, key));
   p.width = number(member(j, path, "width"), at(path, "width"));
   p.normal_blend = number(member(j, path, "normal_blend"), at(path, "normal_blend"));
-  if (p.height <= 0.0) fail(at(path, "height"), "must be positive");
+  if (p.height <= 0.0) fail(at(path, key), "must be positive");
   if (p.width <= 0.0) fail(at(path, "width"), "must be positive");
   if (p.normal_blend < 0.0 || p.normal_blend > 1.0) fail(at(path, "normal_blend"), "must be in [0, 1]");
   return p;

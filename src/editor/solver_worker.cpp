@@ -263,6 +263,9 @@ void SolverWorker::step() {
       std::chrono::duration<double>(Clock::now() - last_request_).count() < kDragPauseSeconds;
   const int batch = dragging ? chunk_ : std::max(chunk_, kSettleBatch);
   options.max_iterations = std::max(0, std::min(batch, problem_->spec.max_iterations - done));
+  // A jump (undo, typed values, an opened scenario) is followed in sub-steps, a batch at a
+  // time, so new targets are still picked up between batches.
+  options.path.max_iterations = std::max(1, batch);
   if (first_solve_) {  // say what the wait is for: it can take seconds on big meshes
     {
       std::lock_guard<std::mutex> lock(mutex_);

@@ -324,12 +324,26 @@ void prisms_section(Editor& e) {
   Document* doc = e.document();
   if (!ImGui::CollapsingHeader("Material (prisms)", ImGuiTreeNodeFlags_DefaultOpen) || !doc) return;
   PrismSettings& p = doc->state.prisms;
-  double lo = 0.0, hi = 3.0;
-  ImGui::SetNextItemWidth(-90);
-  track_edit(e, ImGui::SliderScalar("Height", ImGuiDataType_Double, &p.height, &lo, &hi, "%.3f"),
-             "Prism height");
-  help_marker("Half-thickness of the prism layer in mean edge lengths: thicker is stiffer against "
-              "bending; 0 is a membrane.");
+  if (p.height_unit == HeightUnit::Diagonal) {
+    // Shown in percent of the bounding-box diagonal, stored as a fraction.
+    double percent = p.height * 100.0, lo = 0.0, hi = 20.0;
+    ImGui::SetNextItemWidth(-90);
+    const bool changed =
+        ImGui::SliderScalar("Thickness", ImGuiDataType_Double, &percent, &lo, &hi, "%.2f %%");
+    if (changed) p.height = percent / 100.0;
+    track_edit(e, changed, "Prism thickness");
+    help_marker("Half-thickness of the prism layer in percent of the bounding-box diagonal, the "
+                "same material at every mesh resolution: thicker is stiffer against bending and "
+                "bends round; 0 is a membrane.");
+  } else {
+    double lo = 0.0, hi = 3.0;
+    ImGui::SetNextItemWidth(-90);
+    track_edit(e, ImGui::SliderScalar("Height", ImGuiDataType_Double, &p.height, &lo, &hi, "%.3f"),
+               "Prism height");
+    help_marker("Half-thickness of the prism layer in mean edge lengths (prisms.height, as the "
+                "scenario set it): a finer mesh is a thinner, softer layer. Defaults switches to "
+                "the resolution-independent thickness.");
+  }
   double wlo = 0.5, whi = 1.5;
   ImGui::SetNextItemWidth(-90);
   track_edit(e, ImGui::SliderScalar("Width", ImGuiDataType_Double, &p.width, &wlo, &whi, "%.3f"),
