@@ -109,6 +109,16 @@ TEST_F(DeformCli, ReproducesTheSpecificationExample) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto stats = nlohmann::json::parse(read_text(dir + "/c.json"));
   EXPECT_NEAR(stats["energy"].get<double>(), 0.008368710955476165, 1e-6 * 0.008368710955476165);
+  // The default solve: the 45-degree turn in sub-steps, hierarchical cycles, a Newton polish.
+  EXPECT_GT(stats["path_steps"].get<int>(), 0);
+  EXPECT_GT(stats["hierarchical_cycles"].get<int>(), 0);
+  // --one-step starts from the format's literal state and reaches the same (unique) minimum.
+  const CommandResult one = run_primo("deform " + scenario + " -o " + dir + "/d.obj --one-step --stats " +
+                                      dir + "/d.json");
+  ASSERT_EQ(one.exit_code, 0) << one.err;
+  const auto direct = nlohmann::json::parse(read_text(dir + "/d.json"));
+  EXPECT_EQ(direct["path_steps"], 0);
+  EXPECT_NEAR(direct["energy"].get<double>(), 0.008368710955476165, 1e-6 * 0.008368710955476165);
 }
 
 TEST_F(DeformCli, MissingScenarioFile) {

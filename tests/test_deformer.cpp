@@ -358,3 +358,27 @@ TEST(Deformer, EnergyCarriedThroughHandleMovesMatchesAFullPass) {
   d.set_force_offset(0, Vec3(0.0, 0.1, 0.0));  // a changed force is not carried: a full pass
   EXPECT_DOUBLE_EQ(d.energy(), d.system().energy(d.body_states()));
 }
+
+TEST(Deformer, HierarchicalStartEndsAtTheGlobalMinimum) {
+  // What `primo deform` does when no solver is asked for: cheap cycles, then a Newton polish.
+  const BentCylinder c = bent_cylinder(24, 36, 120.0, 0.0, Fix::All, FaceShape::Triangles);
+  const PrismParameters material = PrismParameters::product_default();
+  SolveOptions options;
+  options.tolerance = 1e-8;
+  options.max_iterations = 200;
+  Deformer global(c.mesh, material, c.handles);
+  const SolveReport exact = global.solve(options);
+  options.hierarchical_start = true;
+  Deformer hybrid(c.mesh, material, c.handles);
+  const SolveReport r = hybrid.solve(options);
+  std::cout << "[ metric   ] 1,728 triangles bent 120 degrees: global " << exact.iterations
+            << " Newton iterations in " << exact.seconds << " s; hierarchical start "
+            << r.hierarchical_cycles << " cycles + " << r.iterations << " Newton in " << r.seconds
+            << " s\n";
+  ASSERT_TRUE(exact.converged && r.converged);
+  EXPECT_GT(r.hierarchical_cycles, 0);
+  EXPECT_LT(r.iterations, exact.iterations);
+  EXPECT_NEAR(r.energy, exact.energy, 1e-9 * exact.energy);
+  EXPECT_LT(primo::test::max_distance(hybrid.vertex_positions(), global.vertex_positions()),
+            1e-6 * c.diagonal);
+}

@@ -58,6 +58,14 @@ struct SolveOptions {
   // Global only: switch to exact-Hessian Newton steps once Gauss-Newton takes full steps
   // that lower the energy by less than this fraction (0 disables exact steps).
   double exact_hessian_below = 1e-1;
+  // Global only: first converge with hierarchical cycles (including any path), then polish
+  // with Newton from there. Cycles cost a few milliseconds where a Newton iteration costs a
+  // factorization, and on the default material they converge in 20-30 cycles: the Figure 2
+  // tube (4,800 triangles) bent 180 degrees takes 0.3 s instead of 3-4 s, and the Newton
+  // polish makes the result the global solve's minimum (exact steps near it). `primo deform`
+  // uses it when no solver is asked for.
+  bool hierarchical_start = false;
+  int max_hierarchical_cycles = 300;  // of that first stage
   // Hierarchical only. The hierarchy is built on the first hierarchical solve and kept until
   // the handle set changes (a new Deformer).
   HierarchicalOptions hierarchical;
@@ -72,6 +80,7 @@ struct SolveReport {
   int exact_newton_steps = 0;
   int path_steps = 0;       // sub-steps of a large jump solved in this call (PathOptions)
   int path_iterations = 0;  // iterations spent on them (not in `iterations`)
+  int hierarchical_cycles = 0;  // of SolveOptions::hierarchical_start (not in `iterations`)
   std::vector<double> energies;  // after each iteration at the final targets
   std::string stop_reason;
 };

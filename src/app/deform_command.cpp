@@ -60,6 +60,9 @@ int run_deform(const DeformArguments& args) {
   // By default a large edit is followed in sub-steps (docs/engine.md, "Large steps");
   // --one-step solves from the format's starting state directly.
   options.path.enabled = !args.one_step;
+  // No solver asked for: global Newton's minimum, reached through cheap hierarchical cycles.
+  options.hierarchical_start = options.method == SolveMethod::Global && args.solver.empty() &&
+                               resolved.solver.method == SolverMethod::Default;
   const SolveReport report = deformer.solve(options);
 
   const Mesh result = deformer.deformed_mesh(mesh);
@@ -85,6 +88,7 @@ int run_deform(const DeformArguments& args) {
         {"exact_newton_steps", report.exact_newton_steps},
         {"path_steps", report.path_steps},
         {"path_iterations", report.path_iterations},
+        {"hierarchical_cycles", report.hierarchical_cycles},
         {"energies", report.energies},
     };
     stats_text = stats.dump(2) + "\n";

@@ -227,6 +227,24 @@ SolveReport Deformer::solve(const SolveOptions& options) {
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return r;
   };
+  if (options.method == SolveMethod::Global && options.hierarchical_start) {
+    SolveOptions first = options;
+    first.method = SolveMethod::Hierarchical;
+    first.hierarchical_start = false;
+    first.max_iterations = options.max_hierarchical_cycles;
+    const SolveReport cycles = solve(first);
+    report.path_steps = cycles.path_steps;
+    report.path_iterations = cycles.path_iterations;
+    report.hierarchical_cycles = cycles.iterations;
+    if (cycles.stop_reason == "path budget") {
+      report.energy = cycles.energy;
+      report.stop_reason = cycles.stop_reason;
+      return finish(report);
+    }
+    // Near a minimum: an exact-Hessian step converges quadratically where Gauss-Newton's
+    // converges linearly (docs/engine.md); it falls back to Gauss-Newton if refused.
+    exact_newton_ = options.exact_hessian_below > 0;
+  }
   if (!follow_path(options, report)) {
     report.energy = energy();
     report.stop_reason = "path budget";
