@@ -27,6 +27,8 @@
 
 #include "commands.h"
 #include "output_files.h"
+#include "scenario_solve.h"
+#include "shared_meshes.h"
 #include "primo/deformer.h"
 #include "primo/error.h"
 #include "primo/geometry.h"
@@ -297,25 +299,6 @@ struct RealMeshRun {
     return t > 0 ? double(report.iterations) * moving_bodies / t : 0.0;
   }
 };
-
-// The benchmark meshes live in the shared folder beside the repository; look for them upward
-// from the working directory and from the executable, since either may be inside the repository.
-std::string find_shared_mesh(const std::string& name) {
-  std::vector<fs::path> starts;
-  std::error_code ec;
-  starts.push_back(fs::current_path(ec));
-  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-  if (!ec) starts.push_back(exe.parent_path());
-  for (fs::path dir : starts) {
-    for (int level = 0; level <= 4 && !dir.empty(); ++level) {
-      const fs::path candidate = dir / "shared" / "meshes" / name;
-      if (fs::is_regular_file(candidate, ec)) return candidate.string();
-      if (dir == dir.parent_path()) break;
-      dir = dir.parent_path();
-    }
-  }
-  return "";
-}
 
 // Bottom tenth (in y) fixed; top tenth turned 30 degrees about x through its centroid and
 // pushed along +z by a tenth of the bounding-box diagonal: a reach-forward pose. Any mesh.
@@ -679,14 +662,6 @@ Mesh loop_subdivide(const Mesh& mesh, int steps, const std::string& source) {
 
 // --- Setting up ---------------------------------------------------------------------------------
 
-// --mesh as given, or a bare file name looked up in the shared meshes folder; "" if neither.
-std::string locate_mesh(const std::string& mesh) {
-  std::error_code ec;
-  if (fs::is_regular_file(mesh, ec)) return mesh;
-  if (fs::path(mesh).has_parent_path()) return "";
-  return find_shared_mesh(mesh);
-}
-
 DragCase make_drag_case(const Scenario& scenario, const std::string& mesh_path,
                         const BenchDragArguments& args) {
   DragCase c;
@@ -1004,15 +979,6 @@ void print_breakdown_row(const char* label, const Breakdown& b, SolveMethod meth
               1e3 * b.acceleration, 1e3 * b.vertex_update, 1e3 * b.other());
 }
 
-const char* method_label(SolveMethod m) {
-  switch (m) {
-    case SolveMethod::Global: return "global";
-    case SolveMethod::Local: return "local";
-    case SolveMethod::Hierarchical: break;
-  }
-  return "hierarchical";
-}
-
 void check_drag_arguments(const BenchDragArguments& args) {
   std::error_code ec;
   if (!args.json.empty()) {
@@ -1037,7 +1003,7 @@ int run_bench_drag(const BenchDragArguments& args) {
   nlohmann::json out;
   out["scenario"] = args.scenario;
   out["build"] = build;
-  out["solver"] = method_label(method);
+  out["solver"] = solve_method_name(method);
   out["frames"] = args.frames;
   out["subdivide"] = args.subdivide;
   out["bbox_handles"] = args.bbox_handles;
@@ -1071,7 +1037,7 @@ int run_bench_drag(const BenchDragArguments& args) {
   for (const Handle& h : c.handles)
     std::printf(" %s (%zu faces)", h.name.empty() ? "-" : h.name.c_str(), h.faces.size());
   std::printf("; %zu forces\n", c.forces.size());
-  std::printf("Solver     %s, %d frames of one iteration each%s\n", method_label(method),
+  std::printf("Solver     %s, %d frames of one iteration each%s\n", solve_method_name(method),
               args.frames, args.drag_only ? " (--drag-only)" : "");
   SolveOptions base;
   base.method = method;
@@ -1378,9 +1344,12 @@ Command register_bench(CLI::App& app) {
       ->check(CLI::Range(-1, 100000))
       ->group(group);
 
-  return {bench, [engine, engine_args, drag, drag_args]() -> int {
+  const Command quality = register_bench_quality(*bench);
+
+  return {bench, [engine, engine_args, drag, drag_args, quality]() -> int {
             if (engine->parsed()) return run_bench_engine(*engine_args);
             if (drag->parsed()) return run_bench_drag(*drag_args);
+            if (quality.subcommand->parsed()) return quality.run();
             return 1;  // require_subcommand(1) makes this unreachable
           }};
 }
