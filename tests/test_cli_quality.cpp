@@ -11,14 +11,11 @@
 #include "test_support.h"
 
 using primo::test::CommandResult;
+using primo::test::read_json;
 using primo::test::run_primo;
 
 namespace {
 
-nlohmann::json read_json(const std::string& path) {
-  std::ifstream in(path);
-  return nlohmann::json::parse(in);
-}
 
 // A small triangle cylinder (radius 0.25, length 2, 8 around, 12 bands) and its scenario:
 // bottom band fixed, top band moved by `transform` (scenario JSON).

@@ -19,11 +19,6 @@ double angle_between(const Vec3& a, const Vec3& b) {
   return std::atan2(a.cross(b).norm(), a.dot(b));
 }
 
-// Signed volume of the tetrahedron (origin, a, b, c).
-double signed_volume(const Vec3& a, const Vec3& b, const Vec3& c) {
-  return a.dot(b.cross(c)) / 6.0;
-}
-
 // Root mean square and maximum of absolute values.
 struct Spread {
   double sum_of_squares = 0.0;
@@ -60,23 +55,23 @@ std::vector<std::vector<OpenMesh::SmartHalfedgeHandle>> boundary_loops(const Mes
 }  // namespace
 
 double capped_volume(const Mesh& mesh) {
+  // A polygon fanned about a point c encloses with the origin sum_k det(c, p_k, p_k+1) / 6
+  // = c . (sum_k p_k x p_k+1) / 6 = c . a / 3, a its Newell vector area (the sum does not depend
+  // on the point Newell's formula is taken about). Faces: about their centroids.
+  const FaceGeometry faces = compute_face_geometry(mesh);
   double volume = 0.0;
-  std::vector<Vec3> corners;
-  for (auto f : mesh.faces()) {
-    corners.clear();
-    for (auto v : f.vertices()) corners.push_back(mesh.point(v));
-    Vec3 centroid = Vec3::Zero();
-    for (const Vec3& p : corners) centroid += p;
-    centroid /= double(corners.size());
-    for (size_t k = 0; k < corners.size(); ++k)
-      volume += signed_volume(centroid, corners[k], corners[(k + 1) % corners.size()]);
-  }
-  // Each cap fans about its loop's vertex centroid.
+  for (size_t f = 0; f < faces.centroid.size(); ++f)
+    volume += faces.centroid[f].dot(faces.vector_area[f]) / 3.0;
+  // Caps: about each loop's vertex centroid.
   for (const auto& loop : boundary_loops(mesh)) {
     Vec3 centroid = Vec3::Zero();
-    for (auto h : loop) centroid += mesh.point(h.from());
+    Vec3 vector_area = Vec3::Zero();
+    for (auto h : loop) {
+      centroid += mesh.point(h.from());
+      vector_area += 0.5 * mesh.point(h.from()).cross(mesh.point(h.to()));
+    }
     centroid /= double(loop.size());
-    for (auto h : loop) volume += signed_volume(centroid, mesh.point(h.from()), mesh.point(h.to()));
+    volume += centroid.dot(vector_area) / 3.0;
   }
   return volume;
 }
