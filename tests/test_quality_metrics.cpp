@@ -3,6 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
 
 #include "primo/error.h"
 #include "primo/mesh_generators.h"
@@ -10,6 +13,7 @@
 #include "quality/cgal_deformation.h"
 #include "quality/mesh_quality.h"
 #include "quality/self_intersections.h"
+#include "test_support.h"
 
 namespace primo::quality {
 namespace {
@@ -195,6 +199,28 @@ TEST(CgalPeers, ControlVerticesReachTheirTargetsAndIdentityStaysAtRest) {
   EXPECT_THROW(deform_with_cgal(make_grid(1, 1, 2, 2, FaceShape::Quads), {0}, {Vec3::Zero()},
                                 PeerMethod::Arap),
                Error);
+}
+
+TEST(QualityLayering, CgalIsIncludedOnlyByTheQualityLibrarySources) {
+  // CGAL's headers are heavy: only src/quality/*.cpp may include them, never a header (which
+  // would carry them into every user) nor the core, the editor or the commands.
+  namespace fs = std::filesystem;
+  const std::string cgal_include = std::string("#include <") + "CGAL/";  // not this file itself
+  std::vector<std::string> allowed, offending;
+  for (const char* folder : {"include", "src", "tests"})
+    for (const auto& entry : fs::recursive_directory_iterator(test::source_path(folder))) {
+      const fs::path path = entry.path();
+      if (path.extension() != ".h" && path.extension() != ".cpp") continue;
+      std::ifstream in(path);
+      std::stringstream text;
+      text << in.rdbuf();
+      if (text.str().find(cgal_include) == std::string::npos) continue;
+      const bool in_quality_source =
+          path.parent_path().filename() == "quality" && path.extension() == ".cpp";
+      (in_quality_source ? allowed : offending).push_back(path.string());
+    }
+  for (const std::string& path : offending) ADD_FAILURE() << path << " includes CGAL";
+  EXPECT_EQ(allowed.size(), 2u);  // self_intersections.cpp, cgal_deformation.cpp
 }
 
 }  // namespace

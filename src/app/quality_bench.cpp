@@ -45,6 +45,7 @@ struct QualityBenchArguments {
   std::string json;
   std::string output_dir;
   std::string mesh_dir;
+  quality::PeerSettings peer;
 };
 
 // One method's result on one case.
@@ -189,7 +190,7 @@ CaseResult run_case(const std::string& scenario_path, const QualityBenchArgument
     MethodRun run;
     run.method = quality::peer_method_name(method);
     const quality::PeerResult peer =
-        quality::deform_with_cgal(mesh, control_vertices, targets, method);
+        quality::deform_with_cgal(mesh, control_vertices, targets, method, args.peer);
     run.seconds = peer.seconds;
     const Mesh result = with_positions(mesh, peer.positions);
     run.metrics = quality::measure_quality(mesh, result, c.mesh_path, c.name + " (" + run.method + ")");
@@ -296,7 +297,7 @@ int run_bench_quality(const QualityBenchArguments& args) {
 #else
   const char* build = "debug (assertions on): times are not representative";
 #endif
-  const quality::PeerSettings peer;
+  const quality::PeerSettings& peer = args.peer;
   std::printf("primo bench quality: %zu cases  [build: %s; %u hardware threads]\n", scenarios.size(),
               build, std::thread::hardware_concurrency());
   std::printf("PriMo: the scenario's settings and `primo deform`'s solver; peers: CGAL "
@@ -342,6 +343,10 @@ Command register_bench_quality(CLI::App& bench) {
                   "Where to find a scenario's mesh that is not at the scenario's own path (by "
                   "file name; default: a shared/meshes folder above the working directory or the "
                   "executable)");
+  cmd->add_option("--peer-max-iterations", args->peer.max_iterations,
+                  "Iteration cap of the ARAP peers (default 1000; their tolerance, 1e-6, ends "
+                  "them earlier)")
+      ->check(CLI::Range(1, 1000000));
   return {cmd, [args] { return run_bench_quality(*args); }};
 }
 
