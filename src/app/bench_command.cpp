@@ -6,7 +6,8 @@
 // 6,500 global prism updates/s on a 3.2 GHz Pentium 4; < 10 global iterations even for extreme
 // deformations): local and global throughput and Newton iteration counts on a limb-like
 // cylinder, and a global solve of a ~30k-face real mesh. Prints a table; --json writes the same
-// figures. `bench` is a group, so `bench drag` sits beside `engine`.
+// figures. `bench` is a group, so `bench drag` sits beside `engine`, and `bench quality`
+// (quality_bench.cpp) beside both.
 
 #include <sys/resource.h>
 

@@ -1,5 +1,5 @@
 // `primo bench quality [SCENARIO...] [--case NAME]... [--json FILE] [--output-dir DIR]
-//                      [--mesh-dir DIR]`
+//                      [--mesh-dir DIR] [--peer-max-iterations N]`
 //
 // How smooth and how faithful large one-step edits are (issue 12, docs/quality.md): every case
 // is a scenario, solved by PriMo exactly as `primo deform` solves it, and by CGAL's ARAP and
