@@ -10,6 +10,8 @@ packages=(
   libopenmesh-dev libeigen3-dev libsuitesparse-dev libopenblas0-pthread
   # command line and file formats
   nlohmann-json3-dev libcli11-dev
+  # quality measurement: exact self-intersections and the ARAP peers (primo_quality only)
+  libcgal-dev
   # editor
   libglfw3-dev libglm-dev libimgui-dev libstb-dev libgl-dev libgl1-mesa-dri
   # tests and benchmarks

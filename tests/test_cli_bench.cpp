@@ -11,17 +11,9 @@
 #include "test_support.h"
 
 using primo::test::CommandResult;
+using primo::test::read_json;
 using primo::test::read_text;
 using primo::test::run_primo;
-
-namespace {
-
-nlohmann::json read_json(const std::string& path) {
-  std::ifstream in(path);
-  return nlohmann::json::parse(in);
-}
-
-}  // namespace
 
 TEST(BenchCli, EngineReportsItsFigures) {
   const std::string dir = primo::test::temp_dir();

@@ -1,6 +1,7 @@
 #pragma once
 // Helpers shared by the unit tests: paths to shipped data, temporary files, running `primo`.
 
+#include <nlohmann/json_fwd.hpp>
 #include <string>
 
 namespace primo::test {
@@ -17,6 +18,8 @@ std::string temp_dir();
 void write_text(const std::string& path, const std::string& text);
 // The whole file, byte for byte ("" when it cannot be read).
 std::string read_text(const std::string& path);
+// The file parsed as JSON (throws when it cannot be read or parsed).
+nlohmann::json read_json(const std::string& path);
 
 // `primo ARGUMENTS` (the built executable) with its output captured.
 struct CommandResult {

@@ -6,7 +6,8 @@
 // 6,500 global prism updates/s on a 3.2 GHz Pentium 4; < 10 global iterations even for extreme
 // deformations): local and global throughput and Newton iteration counts on a limb-like
 // cylinder, and a global solve of a ~30k-face real mesh. Prints a table; --json writes the same
-// figures. `bench` is a group, so `bench drag` sits beside `engine`.
+// figures. `bench` is a group, so `bench drag` sits beside `engine`, and `bench quality`
+// (quality_bench.cpp) beside both.
 
 #include <sys/resource.h>
 
@@ -27,6 +28,8 @@
 
 #include "commands.h"
 #include "output_files.h"
+#include "scenario_solve.h"
+#include "shared_meshes.h"
 #include "primo/deformer.h"
 #include "primo/error.h"
 #include "primo/geometry.h"
@@ -294,25 +297,6 @@ struct RealMeshRun {
     return t > 0 ? double(report.iterations) * moving_bodies / t : 0.0;
   }
 };
-
-// The benchmark meshes live in the shared folder beside the repository; look for them upward
-// from the working directory and from the executable, since either may be inside the repository.
-std::string find_shared_mesh(const std::string& name) {
-  std::vector<fs::path> starts;
-  std::error_code ec;
-  starts.push_back(fs::current_path(ec));
-  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-  if (!ec) starts.push_back(exe.parent_path());
-  for (fs::path dir : starts) {
-    for (int level = 0; level <= 4 && !dir.empty(); ++level) {
-      const fs::path candidate = dir / "shared" / "meshes" / name;
-      if (fs::is_regular_file(candidate, ec)) return candidate.string();
-      if (dir == dir.parent_path()) break;
-      dir = dir.parent_path();
-    }
-  }
-  return "";
-}
 
 // Bottom tenth (in y) fixed; top tenth turned 30 degrees about x through its centroid and
 // pushed along +z by a tenth of the bounding-box diagonal: a reach-forward pose. Any mesh.
@@ -628,14 +612,6 @@ struct DragCase {
 };
 
 // --- Setting up ---------------------------------------------------------------------------------
-
-// --mesh as given, or a bare file name looked up in the shared meshes folder; "" if neither.
-std::string locate_mesh(const std::string& mesh) {
-  std::error_code ec;
-  if (fs::is_regular_file(mesh, ec)) return mesh;
-  if (fs::path(mesh).has_parent_path()) return "";
-  return find_shared_mesh(mesh);
-}
 
 DragCase make_drag_case(const Scenario& scenario, const std::string& mesh_path,
                         const BenchDragArguments& args) {
@@ -954,15 +930,6 @@ void print_breakdown_row(const char* label, const Breakdown& b, SolveMethod meth
               1e3 * b.acceleration, 1e3 * b.vertex_update, 1e3 * b.other());
 }
 
-const char* method_label(SolveMethod m) {
-  switch (m) {
-    case SolveMethod::Global: return "global";
-    case SolveMethod::Local: return "local";
-    case SolveMethod::Hierarchical: break;
-  }
-  return "hierarchical";
-}
-
 void check_drag_arguments(const BenchDragArguments& args) {
   std::error_code ec;
   if (!args.json.empty()) {
@@ -987,7 +954,7 @@ int run_bench_drag(const BenchDragArguments& args) {
   nlohmann::json out;
   out["scenario"] = args.scenario;
   out["build"] = build;
-  out["solver"] = method_label(method);
+  out["solver"] = solve_method_name(method);
   out["frames"] = args.frames;
   out["subdivide"] = args.subdivide;
   out["bbox_handles"] = args.bbox_handles;
@@ -1021,7 +988,7 @@ int run_bench_drag(const BenchDragArguments& args) {
   for (const Handle& h : c.handles)
     std::printf(" %s (%zu faces)", h.name.empty() ? "-" : h.name.c_str(), h.faces.size());
   std::printf("; %zu forces\n", c.forces.size());
-  std::printf("Solver     %s, %d frames of one iteration each%s\n", method_label(method),
+  std::printf("Solver     %s, %d frames of one iteration each%s\n", solve_method_name(method),
               args.frames, args.drag_only ? " (--drag-only)" : "");
   SolveOptions base;
   base.method = method;
@@ -1328,9 +1295,12 @@ Command register_bench(CLI::App& app) {
       ->check(CLI::Range(-1, 100000))
       ->group(group);
 
-  return {bench, [engine, engine_args, drag, drag_args]() -> int {
+  const Command quality = register_bench_quality(*bench);
+
+  return {bench, [engine, engine_args, drag, drag_args, quality]() -> int {
             if (engine->parsed()) return run_bench_engine(*engine_args);
             if (drag->parsed()) return run_bench_drag(*drag_args);
+            if (quality.subcommand->parsed()) return quality.run();
             return 1;  // require_subcommand(1) makes this unreachable
           }};
 }

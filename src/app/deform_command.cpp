@@ -8,6 +8,7 @@
 
 #include "commands.h"
 #include "output_files.h"
+#include "scenario_solve.h"
 #include "primo/deformer.h"
 #include "primo/error.h"
 #include "primo/mesh_io.h"
@@ -24,28 +25,6 @@ struct DeformArguments {
   bool one_step = false;
 };
 
-SolveMethod choose_method(const std::string& flag, SolverMethod from_scenario, size_t faces) {
-  if (flag == "local") return SolveMethod::Local;
-  if (flag == "global") return SolveMethod::Global;
-  if (flag == "hierarchical") return SolveMethod::Hierarchical;
-  switch (from_scenario) {
-    case SolverMethod::Local: return SolveMethod::Local;
-    case SolverMethod::Global: return SolveMethod::Global;
-    case SolverMethod::Hierarchical: return SolveMethod::Hierarchical;
-    case SolverMethod::Default: break;
-  }
-  return default_solve_method(faces);
-}
-
-const char* method_name(SolveMethod m) {
-  switch (m) {
-    case SolveMethod::Local: return "local";
-    case SolveMethod::Hierarchical: return "hierarchical";
-    case SolveMethod::Global: break;
-  }
-  return "global";
-}
-
 int run_deform(const DeformArguments& args) {
   check_mesh_output_path(args.output);
   const Scenario scenario = load_scenario(args.scenario);
@@ -53,16 +32,10 @@ int run_deform(const DeformArguments& args) {
   const ResolvedScenario resolved = resolve_scenario(scenario, mesh);
 
   Deformer deformer(mesh, resolved.prisms, resolved.handles, resolved.forces);
-  SolveOptions options;
-  options.method = choose_method(args.solver, resolved.solver.method, mesh.n_faces());
-  options.max_iterations = resolved.solver.max_iterations;
-  options.tolerance = resolved.solver.tolerance;
+  SolveOptions options = scenario_solve_options(resolved.solver, mesh.n_faces(), args.solver);
   // By default a large edit is followed in sub-steps (docs/engine.md, "Large steps");
   // --one-step solves from the format's starting state directly.
   options.path.enabled = !args.one_step;
-  // No solver asked for: global Newton's minimum, reached through cheap hierarchical cycles.
-  options.hierarchical_start = options.method == SolveMethod::Global && args.solver.empty() &&
-                               resolved.solver.method == SolverMethod::Default;
   const SolveReport report = deformer.solve(options);
 
   const Mesh result = deformer.deformed_mesh(mesh);
@@ -84,7 +57,7 @@ int run_deform(const DeformArguments& args) {
         {"seconds", report.seconds},
         {"faces", mesh.n_faces()},
         {"vertices", mesh.n_vertices()},
-        {"solver", method_name(options.method)},
+        {"solver", solve_method_name(options.method)},
         {"exact_newton_steps", report.exact_newton_steps},
         {"path_steps", report.path_steps},
         {"path_iterations", report.path_iterations},

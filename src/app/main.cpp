@@ -14,7 +14,8 @@ int main(int argc, char** argv) {
   const std::vector<primo::app::Command> commands = {
       primo::app::register_edit(app), primo::app::register_deform(app),
       primo::app::register_generate(app), primo::app::register_bench(app),
-      primo::app::register_replay(app)};
+      primo::app::register_replay(app),
+      primo::app::register_metrics(app)};
 
   try {
     app.parse(argc, argv);
