@@ -6,8 +6,11 @@
 
 #include <Eigen/Geometry>
 #include <filesystem>
+#include <iostream>
+#include <thread>
 
 #include "document.h"
+#include "editor.h"
 #include "paint.h"
 #include "primo/deformer.h"
 #include "primo/error.h"
@@ -141,4 +144,99 @@ TEST(EditorScenario, BrokenFilesThrowErrors) {
   test::write_text(dir + "/bad.json", "{\"format\": \"primo-scenario/1\"}");
   EXPECT_THROW(load_document(dir + "/bad.json"), Error);
   EXPECT_THROW(load_document(dir + "/missing.obj"), Error);
+}
+
+namespace {
+
+bool settle(Editor& editor) {
+  for (int i = 0; i < 6000; ++i) {
+    editor.update(0.016);
+    if (editor.settled() && !editor.file_task_running()) return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  return false;
+}
+
+double largest_distance(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
+  double d = 0.0;
+  for (size_t i = 0; i < a.size(); ++i) d = std::max(d, (a[i] - b[i]).norm());
+  return d;
+}
+
+Eigen::Quaterniond twist(double degrees) {
+  return Eigen::Quaterniond(Eigen::AngleAxisd(degrees * M_PI / 180.0, Vec3::UnitY()));
+}
+
+}  // namespace
+
+TEST(EditorScenario, ASavedPoseReopensAndDeformsToThePoseShown) {
+  // A tube twisted 240 degrees in two steps of 120: a solve from rest would twist it the
+  // short way (-120 degrees), a very different pose; a fixed region made on the posed tube
+  // (its fitted pose is not the identity); a spring.
+  const std::string dir = test::temp_dir();
+  save_mesh(make_cylinder(0.25, 2.0, 12, 20, FaceShape::Quads), dir + "/tube.obj");
+  Editor editor;
+  editor.adopt(load_document(dir + "/tube.obj"));
+  Document& doc = *editor.document();
+  const MeshTopology& t = *doc.topology;
+  add_handle(doc.state, t, t.rest_points, faces_where(t, 0.0, 0.1), HandleMode::Fixed);
+  const int top = add_handle(doc.state, t, t.rest_points, faces_where(t, 1.9, 2.0), HandleMode::Pose);
+  editor.commit("handles");
+  for (double degrees : {120.0, 240.0}) {
+    doc.state.handles[size_t(top)].pose.rotation = twist(degrees);
+    editor.commit("twist");
+    ASSERT_TRUE(settle(editor));
+  }
+  add_handle(doc.state, t, editor.positions(), faces_where(t, 0.15, 0.25), HandleMode::Fixed);
+  const int spring = add_handle(doc.state, t, editor.positions(), faces_where(t, 0.6, 0.7), HandleMode::Spring);
+  doc.state.handles[size_t(spring)].pose.translate = Vec3(0.1, 0.0, 0.0);
+  editor.commit("fixed region and spring");
+  ASSERT_TRUE(settle(editor));
+  const std::vector<Vec3> shown = editor.positions();
+  std::vector<HandleMode> modes;
+  for (const HandleGroup& g : doc.state.handles) modes.push_back(g.mode);
+  ASSERT_EQ(modes[2], HandleMode::Fixed);
+  ASSERT_FALSE(doc.state.handles[2].pose.is_identity());  // what used to come back as a Pose handle
+
+  const std::string scenario = dir + "/pose.json";
+  editor.save_scenario(scenario);
+  const Scenario saved = load_scenario(scenario);
+  ASSERT_TRUE(saved.solved_state.has_value());
+  ASSERT_EQ(saved.solved_state->face_motions.size(), size_t(t.n_faces));
+  const double diagonal = t.bbox_diagonal;
+
+  // Reopened: the same pose and the same modes.
+  Editor reopened;
+  reopened.open(scenario);
+  ASSERT_TRUE(settle(reopened));
+  ASSERT_NE(reopened.document(), nullptr);
+  std::vector<HandleMode> reopened_modes;
+  for (const HandleGroup& g : reopened.document()->state.handles) reopened_modes.push_back(g.mode);
+  EXPECT_EQ(reopened_modes, modes);
+  const double reopened_apart = largest_distance(reopened.positions(), shown) / diagonal;
+  EXPECT_LT(reopened_apart, 1e-6);
+
+  // `primo deform` of the saved scenario: the pose shown.
+  const test::CommandResult r = test::run_primo("deform " + scenario + " -o " + dir + "/out.obj");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Mesh out = load_mesh(dir + "/out.obj");
+  std::vector<Vec3> deformed;
+  for (auto v : out.vertices()) deformed.push_back(out.point(v));
+  const double deform_apart = largest_distance(deformed, shown) / diagonal;
+  EXPECT_LT(deform_apart, 1e-6);
+
+  // Without the solved state the same scenario solves to another pose: the check means
+  // something.
+  Scenario bare = saved;
+  bare.solved_state.reset();
+  test::write_text(dir + "/bare.json", scenario_to_json(bare));
+  ASSERT_EQ(test::run_primo("deform " + dir + "/bare.json -o " + dir + "/bare.obj").exit_code, 0);
+  const Mesh bare_out = load_mesh(dir + "/bare.obj");
+  std::vector<Vec3> from_rest;
+  for (auto v : bare_out.vertices()) from_rest.push_back(bare_out.point(v));
+  const double bare_apart = largest_distance(from_rest, shown) / diagonal;
+  std::cout << "[ metric   ] saved pose, largest vertex distance to the pose shown: reopened "
+            << reopened_apart << ", primo deform " << deform_apart
+            << ", primo deform without the solved state " << bare_apart << " (of the diagonal)\n";
+  EXPECT_GT(bare_apart, 0.05);
 }

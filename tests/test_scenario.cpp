@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
 #include <cmath>
 #include <filesystem>
 #include <functional>
@@ -726,6 +727,42 @@ TEST(ScenarioHalfThickness, SetsTheLayerToThatFractionOfTheDiagonal) {
   p.height_unit = HeightUnit::MeanEdgeLength;
   p.height = 1.0;
   EXPECT_NEAR(build_prism_layer(mesh, p).corner_offset[0].norm(), layer.mean_edge_length, 1e-12);
+}
+
+// --- solved state and editor metadata (our extensions) ------------------------------------
+
+TEST(ScenarioSolvedState, RoundTripsEveryDigitAndIsCheckedAgainstTheMesh) {
+  Scenario s = parse_scenario(scenario_text(), "");
+  RigidTransform m;
+  m.rotation = Eigen::AngleAxisd(2.0, Vec3(1, 2, 3).normalized()).toRotationMatrix();
+  m.translation = Vec3(0.1, -1.0 / 3.0, 2e-17);
+  s.solved_state = SolvedStateSpec{{m, RigidTransform::identity()}};
+  s.editor = EditorSpec{{}};
+  const Scenario again = parse_scenario(scenario_to_json(s), "");
+  ASSERT_TRUE(again.solved_state.has_value());
+  ASSERT_EQ(again.solved_state->face_motions.size(), 2u);
+  EXPECT_LT((again.solved_state->face_motions[0].rotation - m.rotation).norm(), 1e-15);
+  EXPECT_EQ(again.solved_state->face_motions[0].translation, m.translation);
+  EXPECT_TRUE(again.editor.has_value());
+  // Two motions for a mesh of one face: an error naming the key and both counts.
+  const Mesh one = make_grid(1, 1, 1, 1, FaceShape::Quads);
+  expect_contains(error_of([&] { resolve_scenario(again, one); }),
+                  {"solved_state.face_motions", "2 motions", "1 faces"});
+}
+
+TEST(ScenarioSolvedState, BadMotionsAndFixedRegionsAreErrors) {
+  auto error = [](const std::string& members) {
+    return error_of([&] { parse_scenario(scenario_text(members), "s.json"); });
+  };
+  expect_contains(error(R"("solved_state": {"face_motions": [[1, 0, 0, 0, 0, 0]]})"),
+                  {"s.json", "solved_state.face_motions[0]", "unit quaternion"});
+  expect_contains(error(R"("solved_state": {"face_motions": [[2, 0, 0, 0, 0, 0, 0]]})"),
+                  {"solved_state.face_motions[0]", "not a unit quaternion"});
+  expect_contains(error(R"("solved_state": {"face_motions": [[1, 0, 0, 0, 0, 0, "x"]]})"),
+                  {"solved_state.face_motions[0][6]", "expected a number"});
+  expect_contains(error(R"("solved_state": {})"), {"solved_state.face_motions", "missing"});
+  expect_contains(error(R"("editor": {"fixed_regions": [0]})"),
+                  {"editor.fixed_regions[0]", "no handle 0"});
 }
 
 }  // namespace

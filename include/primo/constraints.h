@@ -37,7 +37,7 @@ enum class HeightUnit {
 // The half-thickness the editor gives a new mesh and the quality benchmark uses, as a
 // fraction of the bounding-box diagonal; chosen by measurement (docs/quality.md, "Default
 // material"). Scenario files that set neither key keep the format's `height` 1.
-inline constexpr double kDefaultHalfThickness = 0.06;
+inline constexpr double kDefaultHalfThickness = 0.08;
 
 struct PrismParameters {
   double height = 1.0;        // half-thickness as a multiple of `height_unit`

@@ -131,8 +131,11 @@ class Deformer {
   // A copy of `mesh` with the deformed positions.
   Mesh deformed_mesh(const Mesh& mesh) const;
 
-  // Per-face rigid motions in rest coordinates (x -> R x + t), and setting them for the
-  // faces of free bodies (constrained bodies keep their prescribed parts).
+  // Per-face rigid motions in rest coordinates (x -> R x + t), and setting them as the state
+  // (a warm start: the editor keeping its pose through a rebuild, a scenario's solved state).
+  // Free bodies take their faces' motion; a position handle takes the rotation, an orientation
+  // handle the translation, and what a handle prescribes stays. The state then counts as the
+  // one for the current targets: no path is followed from rest (PathOptions).
   std::vector<RigidTransform> face_motions() const;
   void set_face_motions(const std::vector<RigidTransform>& motions);
   const std::vector<BodyState>& body_states() const { return state_; }

@@ -62,6 +62,22 @@ struct SolverSpec {
   SolverMethod method = SolverMethod::Default;  // our documented extension: solver.method
 };
 
+// Our extension `solved_state` (docs/scenario-format.md): the per-face rigid motions of a
+// solved pose, x -> R x + t in rest coordinates, which a solve starts from instead of rest, so
+// that a pose saved from the editor is reproduced exactly (the format allows it from version 1
+// on). Free prisms take their motion; a `position` handle its rotation, an `orientation`
+// handle its translation; `fix: "all"` handles keep their transform.
+struct SolvedStateSpec {
+  std::vector<RigidTransform> face_motions;  // one per face of the mesh, in its order
+};
+
+// Our extension `editor`: what the format cannot say about the editor's handles. A fixed
+// region and a posable handle are both `fix: "all"`; these indices into `handles` are the
+// fixed regions, so they come back as regions that cannot be dragged.
+struct EditorSpec {
+  std::vector<int> fixed_regions;
+};
+
 struct Scenario {
   std::string source;     // the scenario file's path ("" when parsed from text)
   std::string mesh;       // as written in the file
@@ -71,6 +87,8 @@ struct Scenario {
   std::vector<HandleSpec> handles;
   std::vector<ForceSpec> forces;
   SolverSpec solver;
+  std::optional<SolvedStateSpec> solved_state;
+  std::optional<EditorSpec> editor;
 };
 
 // Throws Error "<source>: <json path>: <problem>" for malformed JSON (with line/column),
@@ -93,6 +111,7 @@ struct ResolvedScenario {
   std::vector<Handle> handles;
   std::vector<Force> forces;
   SolverSpec solver;
+  std::vector<RigidTransform> start_motions;  // the solved state's, checked: one per face
 };
 
 // Applies regions in order (a later region wins per key), resolves handles (a face in two

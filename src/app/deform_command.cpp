@@ -13,6 +13,7 @@
 #include "primo/error.h"
 #include "primo/mesh_io.h"
 #include "primo/scenario.h"
+#include "primo/scenario_deformer.h"
 
 namespace primo::app {
 namespace {
@@ -31,7 +32,7 @@ int run_deform(const DeformArguments& args) {
   const Mesh mesh = load_mesh(scenario.mesh_path);
   const ResolvedScenario resolved = resolve_scenario(scenario, mesh);
 
-  Deformer deformer(mesh, resolved.prisms, resolved.handles, resolved.forces);
+  Deformer deformer = make_scenario_deformer(mesh, resolved);
   SolveOptions options = scenario_solve_options(resolved.solver, mesh.n_faces(), args.solver);
   // By default a large edit is followed in sub-steps (docs/engine.md, "Large steps");
   // --one-step solves from the format's starting state directly.

@@ -427,13 +427,25 @@ std::vector<RigidTransform> Deformer::face_motions() const {
 
 void Deformer::set_face_motions(const std::vector<RigidTransform>& motions) {
   if (int(motions.size()) != layer_.n_faces()) throw Error("one motion per face is needed");
+  for (const RigidTransform& m : motions)
+    if (!m.rotation.allFinite() || !m.translation.allFinite())
+      throw Error("a face motion is not finite");
   problem_changed();
   exact_newton_ = false;
-  for (int b = int(handles_.size()); b < system_.n_bodies(); ++b) {
+  for (int b = 0; b < system_.n_bodies(); ++b) {
     const RigidSystem::Body& body = system_.bodies[b];
     const RigidTransform& m = motions[body.faces.front()];
-    state_[b].rotation = m.rotation;
-    state_[b].position = m.apply(body.rest_center);
+    const BodyState given{m.rotation, m.apply(body.rest_center)};
+    if (b >= int(handles_.size())) {
+      state_[b] = given;
+      continue;
+    }
+    // A handle keeps what it prescribes and takes the rest.
+    switch (handles_[b].fix) {
+      case Fix::All: break;
+      case Fix::Position: state_[b].rotation = given.rotation; break;
+      case Fix::Orientation: state_[b].position = given.position; break;
+    }
   }
   // The state given is the one for the targets set now: no path to follow from rest.
   for (size_t h = 0; h < handles_.size(); ++h) solved_transforms_[h] = handles_[h].transform;

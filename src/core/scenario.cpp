@@ -4,6 +4,7 @@
 
 #include "primo/scenario.h"
 
+#include <Eigen/Geometry>
 #include <climits>
 #include <cmath>
 #include <filesystem>
@@ -429,6 +430,52 @@ void read_solver(const ScenarioReader& in, const Json& value, SolverSpec& solver
   }
 }
 
+// [w, x, y, z, tx, ty, tz] per face: a unit quaternion (checked to 1e-6, then normalized, so
+// values rounded by another writer still load) and a translation.
+SolvedStateSpec read_solved_state(const ScenarioReader& in, const Json& value) {
+  const std::string path = "solved_state";
+  in.expect_object(value, path);
+  in.expect_only_keys(value, path, {"face_motions"});
+  const std::string list_path = child_path(path, "face_motions");
+  const Json& list = in.required(value, path, "face_motions");
+  in.expect_array(list, list_path);
+  SolvedStateSpec state;
+  state.face_motions.reserve(list.size());
+  for (size_t f = 0; f < list.size(); ++f) {
+    const std::string at = element_path(list_path, f);
+    const Json& m = list[f];
+    if (!m.is_array() || m.size() != 7)
+      in.fail(at, "expected [w, x, y, z, tx, ty, tz]: a unit quaternion and a translation");
+    double v[7];
+    for (size_t k = 0; k < 7; ++k) v[k] = in.number(m[k], element_path(at, k));
+    Eigen::Quaterniond q(v[0], v[1], v[2], v[3]);
+    if (std::abs(q.norm() - 1.0) > 1e-6)
+      in.fail(at, "not a unit quaternion (norm " + ScenarioReader::format_number(q.norm()) + ")");
+    q.normalize();
+    RigidTransform t;
+    t.rotation = q.toRotationMatrix();
+    t.translation = Vec3(v[4], v[5], v[6]);
+    state.face_motions.push_back(t);
+  }
+  return state;
+}
+
+EditorSpec read_editor(const ScenarioReader& in, const Json& value, size_t n_handles) {
+  const std::string path = "editor";
+  in.expect_object(value, path);
+  in.expect_only_keys(value, path, {"fixed_regions"});
+  EditorSpec editor;
+  if (const Json* v = in.optional(value, "fixed_regions")) {
+    const std::string at = child_path(path, "fixed_regions");
+    editor.fixed_regions = in.index_list(*v, at);
+    for (size_t k = 0; k < editor.fixed_regions.size(); ++k)
+      if (size_t(editor.fixed_regions[k]) >= n_handles)
+        in.fail(element_path(at, k), "no handle " + std::to_string(editor.fixed_regions[k]) +
+                                         " (there are " + std::to_string(n_handles) + ")");
+  }
+  return editor;
+}
+
 template <typename Spec, typename ReadOne>
 std::vector<Spec> read_list(const ScenarioReader& in, const Json& root, const char* key,
                             ReadOne read_one) {
@@ -503,7 +550,8 @@ Scenario parse_scenario(const std::string& json_text, const std::string& source)
 
   in.expect_object(root, "");
   in.expect_only_keys(root, "",
-                      {"format", "mesh", "prisms", "regions", "handles", "forces", "solver"});
+                      {"format", "mesh", "prisms", "regions", "handles", "forces", "solver",
+                       "solved_state", "editor"});
 
   const std::string format = in.string(in.required(root, "", "format"), "format");
   if (format != kFormat)
@@ -520,6 +568,10 @@ Scenario parse_scenario(const std::string& json_text, const std::string& source)
   scenario.handles = read_list<HandleSpec>(in, root, "handles", read_handle);
   scenario.forces = read_list<ForceSpec>(in, root, "forces", read_force);
   if (const Json* v = in.optional(root, "solver")) read_solver(in, *v, scenario.solver);
+  if (const Json* v = in.optional(root, "solved_state"))
+    scenario.solved_state = read_solved_state(in, *v);
+  if (const Json* v = in.optional(root, "editor"))
+    scenario.editor = read_editor(in, *v, scenario.handles.size());
   return scenario;
 }
 
@@ -593,6 +645,21 @@ std::string scenario_to_json(const Scenario& scenario) {
   if (scenario.solver.method == SolverMethod::Local) solver["method"] = "local";
   if (scenario.solver.method == SolverMethod::Hierarchical) solver["method"] = "hierarchical";
   root["solver"] = std::move(solver);
+
+  if (scenario.solved_state) {
+    Json motions = Json::array();
+    const auto& list = scenario.solved_state->face_motions;
+    for (size_t f = 0; f < list.size(); ++f) {
+      const std::string path = "solved_state.face_motions[" + std::to_string(f) + "]";
+      const Eigen::Quaterniond q(list[f].rotation);
+      const Vec3& t = list[f].translation;
+      motions.push_back(Json{finite(q.w(), path), finite(q.x(), path), finite(q.y(), path),
+                             finite(q.z(), path), finite(t.x(), path), finite(t.y(), path),
+                             finite(t.z(), path)});
+    }
+    root["solved_state"] = Json{{"face_motions", std::move(motions)}};
+  }
+  if (scenario.editor) root["editor"] = Json{{"fixed_regions", scenario.editor->fixed_regions}};
 
   return root.dump(2) + "\n";
 }

@@ -162,6 +162,19 @@ ResolvedScenario resolve_scenario(const Scenario& scenario, const Mesh& mesh) {
   }
 
   resolved.solver = scenario.solver;
+  if (scenario.solved_state) {
+    const auto& motions = scenario.solved_state->face_motions;
+    if (motions.size() != n_faces)
+      throw Error(label + ": solved_state.face_motions: has " + std::to_string(motions.size()) +
+                  " motions but the mesh has " + std::to_string(n_faces) +
+                  " faces; the solved state belongs to another mesh");
+    resolved.start_motions = motions;
+  }
+  if (scenario.editor)
+    for (int h : scenario.editor->fixed_regions)
+      if (scenario.handles[size_t(h)].fix != Fix::All)
+        throw Error(label + ": editor.fixed_regions: handle " + std::to_string(h) +
+                    " is a fixed region but not fix \"all\"");
   return resolved;
 }
 

@@ -44,6 +44,7 @@ std::unique_ptr<Document> load_document(const std::string& path) {
   doc->scenario_path = path;
   doc->solver = scenario.solver;
   doc->state = import_scenario(scenario, resolved, *doc->topology);
+  doc->start_motions = resolved.start_motions;
   doc->history.reset(doc->state);
   return doc;
 }

@@ -21,6 +21,8 @@ struct Document {
   std::string mesh_path;      // the mesh file
   std::string scenario_path;  // the scenario it was opened from or last saved to ("" if none)
   SolverSpec solver;          // max_iterations / tolerance / method of a settle and of exports
+  // The opened scenario's solved state, handed to the solver with the first problem.
+  std::vector<RigidTransform> start_motions;
   EditState state;            // live: gestures edit it, `commit` records it
   UndoStack history;
 

@@ -109,7 +109,13 @@ void Editor::save_mesh(const std::string& path) {
 void Editor::save_scenario(const std::string& path) {
   if (!doc_) return error("Nothing to save: open a mesh first");
   try {
-    const Scenario s = export_scenario(doc_->state, doc_->mesh_path, path, doc_->solver);
+    // The pose shown, when the solver has finished with the current state: reopening the
+    // scenario or `primo deform` then starts there (docs/editor.md).
+    const SolverGeometry* shown = status_.geometry.get();
+    const bool solved = !status_.busy() && shown && shown->face_motions &&
+                        int(shown->face_motions->size()) == doc_->n_faces();
+    const Scenario s = export_scenario(doc_->state, doc_->mesh_path, path, doc_->solver,
+                                       solved ? shown->face_motions.get() : nullptr);
     app::write_text_atomically(path, scenario_to_json(s));
     doc_->scenario_path = path;
     info("Saved the scenario to " + path);
@@ -207,6 +213,8 @@ void Editor::sync_solver() {
     problem->topology = doc_->topology;
     problem->inputs = deformation_inputs(s);
     problem->spec = doc_->solver;
+    problem->start_motions = std::move(doc_->start_motions);  // once: later rebuilds keep the pose
+    doc_->start_motions.clear();
     worker_->submit_problem(std::move(problem));
   } else {
     bool moved = false;

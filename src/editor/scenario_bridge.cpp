@@ -1,5 +1,6 @@
 #include "scenario_bridge.h"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <sstream>
@@ -42,7 +43,8 @@ FactorArray factor_array(const std::vector<double>& factors) {
 }  // namespace
 
 Scenario export_scenario(const EditState& state, const std::string& mesh_path,
-                         const std::string& scenario_path, const SolverSpec& solver) {
+                         const std::string& scenario_path, const SolverSpec& solver,
+                         const std::vector<RigidTransform>* motions) {
   Scenario s;
   s.mesh = mesh_reference(mesh_path, scenario_path);
   s.prisms.height = state.prisms.height;
@@ -83,8 +85,13 @@ Scenario export_scenario(const EditState& state, const std::string& mesh_path,
       h.transform.angle_deg = aa.angle() * 180.0 / M_PI;
     }
     h.transform.center = g.center;
+    if (g.mode == HandleMode::Fixed) {
+      if (!s.editor) s.editor = EditorSpec{};
+      s.editor->fixed_regions.push_back(int(s.handles.size()));
+    }
     s.handles.push_back(std::move(h));
   }
+  if (motions) s.solved_state = SolvedStateSpec{*motions};
   return s;
 }
 
@@ -119,7 +126,14 @@ EditState import_scenario(const Scenario& scenario, const ResolvedScenario& reso
     const Mat3 R = g.pose.rotation.toRotationMatrix();
     g.pose.translate = t.translate + (c_s - g.center) - R * (c_s - g.center);
     switch (h.fix) {
-      case Fix::All: g.mode = g.pose.is_identity() ? HandleMode::Fixed : HandleMode::Pose; break;
+      case Fix::All: {
+        const bool fixed =
+            scenario.editor ? std::count(scenario.editor->fixed_regions.begin(),
+                                         scenario.editor->fixed_regions.end(), int(i)) > 0
+                            : g.pose.is_identity();
+        g.mode = fixed ? HandleMode::Fixed : HandleMode::Pose;
+        break;
+      }
       case Fix::Position: g.mode = HandleMode::Position; break;
       case Fix::Orientation: g.mode = HandleMode::Orientation; break;
     }

@@ -208,8 +208,11 @@ void SolverWorker::build(const SolverProblem& problem) {
   try {
     auto next = std::make_unique<Deformer>(*problem.mesh, problem.inputs.params,
                                            problem.inputs.handles, problem.inputs.forces);
-    // Keep the current pose across the rebuild when it is the same mesh.
-    if (deformer_ && problem_ && problem_->mesh == problem.mesh)
+    // Start from the given solved state, or keep the current pose across the rebuild when it
+    // is the same mesh.
+    if (!problem.start_motions.empty())
+      next->set_face_motions(problem.start_motions);
+    else if (deformer_ && problem_ && problem_->mesh == problem.mesh)
       next->set_face_motions(deformer_->face_motions());
     deformer_ = std::move(next);
   } catch (const std::exception& e) {
@@ -330,12 +333,14 @@ void SolverWorker::step() {
       next = SolverPhase::Stopped;
     if (next != SolverPhase::Solving) status_.progress = 1.0;
   }
-  publish_geometry();
+  publish_geometry(next != SolverPhase::Solving);
   if (next != SolverPhase::Solving) set_phase(next);
 }
 
-void SolverWorker::publish_geometry() {
+void SolverWorker::publish_geometry(bool with_motions) {
   auto g = std::make_shared<SolverGeometry>();
+  if (with_motions)
+    g->face_motions = std::make_shared<const std::vector<RigidTransform>>(deformer_->face_motions());
   g->positions = deformer_->vertex_positions();
   g->render_positions.resize(3 * g->positions.size());
   for (size_t v = 0; v < g->positions.size(); ++v)

@@ -35,6 +35,9 @@ struct SolverProblem {
   std::shared_ptr<const MeshTopology> topology;
   DeformationInputs inputs;  // handle transforms and force offsets included
   SolverSpec spec;           // max_iterations and tolerance of a settle
+  // Where to start instead of rest or the current pose: an opened scenario's solved state
+  // (one motion per face; empty for none).
+  std::vector<RigidTransform> start_motions;
 };
 
 struct SolverTargets {
@@ -60,6 +63,9 @@ struct SolverGeometry {
   std::vector<float> face_energy;       // per face energy density (empty unless requested)
   double energy_scale = 1.0;            // robust maximum of face_energy
   std::vector<float> prism_corners;     // per corner: bottom xyz, top xyz (empty unless requested)
+  // The solver's per-face motions, published when a request settles or stops (what a saved
+  // scenario stores as its solved state); null while solving.
+  std::shared_ptr<const std::vector<RigidTransform>> face_motions;
   std::uint64_t serial = 0;             // increases with every publication
 };
 
@@ -106,7 +112,7 @@ class SolverWorker {
   void build(const SolverProblem& problem);
   void apply(const SolverTargets& targets);
   void step();
-  void publish_geometry();
+  void publish_geometry(bool with_motions = false);
   void set_phase(SolverPhase phase, std::string error = {});
 
   std::function<void()> notify_;
