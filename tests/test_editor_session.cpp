@@ -346,3 +346,39 @@ TEST(EditorSession, AStoppedSolveContinuesToTheMinimum) {
   direct.solve(SolveOptions{});
   EXPECT_LT(max_distance(s.editor.positions(), direct.vertex_positions()), 1e-6 * s.diagonal());
 }
+
+TEST(EditorSession, OpeningDocumentsBackToBackNeverShowsTheOldOnesGeometry) {
+  // A busy solver (a 7,000-quad tube twisted far) publishes results of the first document
+  // while the second one is opened; the editor must drop them (they crashed face_centroid).
+  Editor e;
+  e.set_viewport({0, 0, 800, 600, 1.0});
+  const std::string dir = primo::test::temp_dir();
+  for (int round = 0; round < 3; ++round) {
+    auto big = make_document(make_cylinder(0.25, 2.0, 70, 100, FaceShape::Quads), "");
+    const MeshTopology& t = *big->topology;
+    std::vector<int> bottom, top;
+    for (int f = 0; f < t.n_faces; ++f) {
+      const double y = t.rest_geometry.centroid[f].y();
+      if (y < 0.05) bottom.push_back(f);
+      if (y > 1.95) top.push_back(f);
+    }
+    add_handle(big->state, t, t.rest_points, bottom, HandleMode::Fixed);
+    const int h = add_handle(big->state, t, t.rest_points, top, HandleMode::Pose);
+    big->state.handles[size_t(h)].pose.rotation =
+        Eigen::Quaterniond(Eigen::AngleAxisd(2.5, Vec3::UnitY()));
+    e.adopt(std::move(big));
+    for (int k = 0; k < 20; ++k) {  // let the worker start publishing the big tube
+      e.update(0.016);
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    // The small bar, opened while the worker is still busy with the tube.
+    e.adopt(make_document(make_bar(0.2, 1.0, 2, 10 + round), ""));
+    const size_t n = size_t(e.document()->topology->n_vertices);
+    for (int k = 0; k < 200; ++k) {
+      e.update(0.016);
+      ASSERT_EQ(e.positions().size(), n) << "round " << round << ", frame " << k;
+      if (k % 20 == 0) e.frame_selection();  // reads face centroids of the shown positions
+      std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    }
+  }
+}

@@ -111,7 +111,7 @@ void Editor::save_scenario(const std::string& path) {
   try {
     // The pose shown, when the solver has finished with the current state: reopening the
     // scenario or `primo deform` then starts there (docs/editor.md).
-    const SolverGeometry* shown = status_.geometry.get();
+    const SolverGeometry* shown = geometry_.get();
     const bool solved = !status_.busy() && shown && shown->face_motions &&
                         int(shown->face_motions->size()) == doc_->n_faces();
     const Scenario s = export_scenario(doc_->state, doc_->mesh_path, path, doc_->solver,
@@ -158,7 +158,11 @@ void Editor::update(double seconds) {
   status_ = worker_->status();
   if (status_.phase == SolverPhase::Failed && before != SolverPhase::Failed)
     error("The solver could not use this setup: " + status_.error);
-  if (status_.geometry && status_.geometry != geometry_) {
+  // Geometry of a problem submitted before the document was opened belongs to the previous
+  // document (the worker may still be publishing it): never show it.
+  if (status_.geometry && status_.geometry != geometry_ &&
+      status_.geometry->problem_serial >= document_serial_ &&
+      status_.geometry->positions.size() == size_t(doc_->topology->n_vertices)) {
     geometry_ = status_.geometry;
     geometry_changed_ = true;
     if (display.heat_map) overlay_changed_ = true;
@@ -215,7 +219,8 @@ void Editor::sync_solver() {
     problem->spec = doc_->solver;
     problem->start_motions = std::move(doc_->start_motions);  // once: later rebuilds keep the pose
     doc_->start_motions.clear();
-    worker_->submit_problem(std::move(problem));
+    const std::uint64_t serial = worker_->submit_problem(std::move(problem));
+    if (!sent_any_) document_serial_ = serial;  // the document's first problem
   } else {
     bool moved = false;
     for (size_t g = 0; g < s.handles.size(); ++g)

@@ -202,6 +202,8 @@ class Editor {
   // Solver bookkeeping.
   EditState sent_;
   bool sent_any_ = false;
+  // Serial of the first solver problem of the current document: older geometry is dropped.
+  std::uint64_t document_serial_ = 0;
   SolverStatus status_;
   std::shared_ptr<const SolverGeometry> geometry_;
   std::uint64_t shown_serial_ = 0;

@@ -178,7 +178,7 @@ void SolverWorker::run() {
       confirming_ = false;
     }
     if (problem) {
-      build(*problem);
+      if (build(*problem)) built_problem_serial_ = problem_serial;
       std::lock_guard<std::mutex> lock(mutex_);
       status_.request_serial = problem_serial;
     }
@@ -202,7 +202,7 @@ void SolverWorker::run() {
   }
 }
 
-void SolverWorker::build(const SolverProblem& problem) {
+bool SolverWorker::build(const SolverProblem& problem) {
   set_phase(SolverPhase::Building);
   const auto start = Clock::now();
   try {
@@ -223,7 +223,7 @@ void SolverWorker::build(const SolverProblem& problem) {
     }
     // The last good deformer (if any) stays, so the view keeps its last result; it must not
     // be solved against targets of a problem it does not describe.
-    return;
+    return false;
   }
   problem_ = std::make_shared<SolverProblem>(problem);
   first_solve_ = true;
@@ -236,6 +236,7 @@ void SolverWorker::build(const SolverProblem& problem) {
   }
   first_decrease_ = 0.0;
   set_phase(SolverPhase::Solving);
+  return true;
 }
 
 void SolverWorker::apply(const SolverTargets& targets) {
@@ -373,6 +374,7 @@ void SolverWorker::publish_geometry(bool with_motions) {
   {
     std::lock_guard<std::mutex> lock(mutex_);
     g->serial = ++geometry_serial_;
+    g->problem_serial = built_problem_serial_;
     status_.geometry = std::move(g);
   }
   published_.notify_all();

@@ -67,6 +67,9 @@ struct SolverGeometry {
   // scenario stores as its solved state); null while solving.
   std::shared_ptr<const std::vector<RigidTransform>> face_motions;
   std::uint64_t serial = 0;             // increases with every publication
+  // The serial of the problem request this geometry was solved for: a reader that switched
+  // documents drops geometry of problems it submitted before the switch.
+  std::uint64_t problem_serial = 0;
 };
 
 struct SolverStatus {
@@ -109,7 +112,7 @@ class SolverWorker {
 
  private:
   void run();
-  void build(const SolverProblem& problem);
+  bool build(const SolverProblem& problem);  // false when it failed (the old deformer stays)
   void apply(const SolverTargets& targets);
   void step();
   void publish_geometry(bool with_motions = false);
@@ -138,6 +141,7 @@ class SolverWorker {
   double first_decrease_ = 0.0;
   bool energy_on_ = false, prisms_on_ = false;
   std::uint64_t geometry_serial_ = 0;
+  std::uint64_t built_problem_serial_ = 0;  // the request deformer_ was built from
 
   std::thread thread_;
 };
