@@ -437,12 +437,17 @@ void draw_properties(Editor& e, UiState& ui, float top, float height) {
   } else {
     ImGui::TextDisabled("No mesh: File > Open (Ctrl+O) or drop a file here");
   }
-  tool_section(e);
-  handles_section(e);
-  prisms_section(e);
-  display_section(e);
-  solver_section(e);
-  session_section(e);
+  // Each section its own ID scope: widgets of different sections may share a label (the
+  // Paint tool's "Width" layer and the material's "Width" slider did, so clicking the first
+  // moved the second).
+  const std::pair<const char*, void (*)(Editor&)> sections[] = {
+      {"tool", tool_section},       {"handles", handles_section}, {"prisms", prisms_section},
+      {"display", display_section}, {"solver", solver_section},   {"session", session_section}};
+  for (const auto& [id, draw] : sections) {
+    ImGui::PushID(id);
+    draw(e);
+    ImGui::PopID();
+  }
   ImGui::End();
 }
 
