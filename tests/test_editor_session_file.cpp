@@ -153,6 +153,26 @@ TEST(SessionFile, PrismsKeepTheirHeightUnit) {
   EXPECT_NE(error_of([&] { parse_session(both, "s.json"); }).find("exactly one of"), std::string::npos);
 }
 
+TEST(SessionFile, AcceptsEveryMaterialTheEditorCanMake) {
+  // The Shell/plate slider goes below 0 (detail enhancement) and the thickness slider to 0
+  // (a membrane): a session recorded with those loads and validates, as a scenario would.
+  Recorded r = record_bar_session("bar.obj");
+  r.session.initial.prisms.normal_blend = -0.47;
+  r.session.initial.prisms.height = 0.0;
+  for (SessionEvent& event : r.session.events)
+    if (event.type == SessionEvent::Type::Prisms) event.prisms.normal_blend = 1.4;
+  const std::string text = session_to_json(r.session, "");
+  const Session back = parse_session(text, "s.json");
+  EXPECT_EQ(back.initial.prisms.normal_blend, -0.47);
+  EXPECT_NO_THROW(validate_session(back, r.doc->n_faces()));
+  // Out of every range still is an error naming the key.
+  Session negative = r.session;
+  negative.initial.prisms.width = -1.0;
+  const std::string bad = session_to_json(negative, "");
+  EXPECT_NE(error_of([&] { parse_session(bad, "s.json"); }).find("width: must be positive"),
+            std::string::npos);
+}
+
 TEST(SessionFile, ErrorsNameTheEvent) {
   const Recorded r = record_bar_session("bar.obj");
   const std::string text = session_to_json(r.session, "");

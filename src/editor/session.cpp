@@ -164,9 +164,10 @@ PrismSettings parse_prisms(const json& j, const std::string& path) {
   p.height = number(member(j, path, key), at(path, key));
   p.width = number(member(j, path, "width"), at(path, "width"));
   p.normal_blend = number(member(j, path, "normal_blend"), at(path, "normal_blend"));
-  if (p.height <= 0.0) fail(at(path, key), "must be positive");
+  // The scenario format's ranges, which are also what the editor's sliders can make: height
+  // >= 0 (0 a membrane), width > 0, any finite normal_blend (below 0 enhances detail).
+  if (p.height < 0.0) fail(at(path, key), "must be >= 0");
   if (p.width <= 0.0) fail(at(path, "width"), "must be positive");
-  if (p.normal_blend < 0.0 || p.normal_blend > 1.0) fail(at(path, "normal_blend"), "must be in [0, 1]");
   return p;
 }
 
