@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <cmath>
 #include <limits>
 #include <thread>
 
@@ -381,4 +382,32 @@ TEST(EditorSession, OpeningDocumentsBackToBackNeverShowsTheOldOnesGeometry) {
       std::this_thread::sleep_for(std::chrono::milliseconds(2));
     }
   }
+}
+
+TEST(EditorSession, ALassoClosedNearItsStartSelectsWhatItEncloses) {
+  Harness s;
+  s.editor.tools.tool = Tool::Select;
+  s.editor.tools.shape = SelectShape::Lasso;
+  ASSERT_TRUE(s.settle());
+  // A loop of radius 60 px around the middle of the view, released 1 px from where it began.
+  const double cx = 400, cy = 300, r = 60;
+  s.event(InputEvent::cursor(cx + r, cy));
+  s.event(InputEvent::mouse(GLFW_MOUSE_BUTTON_LEFT, GLFW_PRESS, 0));
+  for (int k = 1; k <= 36; ++k) {
+    const double a = 2 * M_PI * k / 36;
+    s.event(InputEvent::cursor(cx + r * std::cos(a), cy + r * std::sin(a)));
+  }
+  s.event(InputEvent::cursor(cx + r, cy + 1));
+  s.event(InputEvent::mouse(GLFW_MOUSE_BUTTON_LEFT, GLFW_RELEASE, 0));
+  const FaceMask& selected = *s.editor.document()->state.selection;
+  int n = 0;
+  for (auto m : selected) n += m ? 1 : 0;
+  EXPECT_GT(n, 0);
+  // A real click (no movement) on empty space still clears.
+  s.event(InputEvent::cursor(5, 5));
+  s.event(InputEvent::mouse(GLFW_MOUSE_BUTTON_LEFT, GLFW_PRESS, 0));
+  s.event(InputEvent::mouse(GLFW_MOUSE_BUTTON_LEFT, GLFW_RELEASE, 0));
+  n = 0;
+  for (auto m : *s.editor.document()->state.selection) n += m ? 1 : 0;
+  EXPECT_EQ(n, 0);
 }

@@ -474,7 +474,12 @@ void Editor::end_gesture() {
       case Gesture::SelectBox:
       case Gesture::SelectLasso: {
         std::vector<int> faces;
-        if (glm::length(cursor_ - press_) < 3.0) {
+        // A click when the pointer never left the press point; a lasso closed back near its
+        // start is still a lasso (it used to select nothing and clear the selection).
+        double reach = glm::length(cursor_ - press_);
+        if (g == Gesture::SelectLasso)
+          for (const glm::dvec2& p : lasso_) reach = std::max(reach, glm::length(p - press_));
+        if (reach < 3.0) {
           const int f = face_at_cursor();  // a click: the face under the cursor
           if (f >= 0) faces.push_back(f);
         } else if (g == Gesture::SelectBox) {
