@@ -3,6 +3,9 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
+#include <thread>
+
 #include "edit_state.h"
 #include "energy_map.h"
 #include "primo/deformer.h"
@@ -147,4 +150,49 @@ TEST(EditorSolverWorker, NewHandlesAtRestSetUpTheSolverBeforeTheDrag) {
     EXPECT_EQ(s.iterations, 0);
     EXPECT_TRUE(s.solver_ready) << (method == SolverMethod::Global ? "global" : "hierarchical");
   }
+}
+
+TEST(EditorSolverWorker, StopEndsASolveWhereItIsAndTheSameTargetsSolveOn) {
+  // A tube of 1,728 quads twisted far: long enough to stop in the middle.
+  auto mesh = std::make_shared<const Mesh>(make_cylinder(0.25, 2.0, 36, 48, FaceShape::Quads));
+  auto topology = std::make_shared<const MeshTopology>(build_topology(*mesh));
+  EditState state = initial_edit_state(int(mesh->n_faces()));
+  std::vector<int> bottom, top;
+  for (int f = 0; f < topology->n_faces; ++f) {
+    const double y = topology->rest_geometry.centroid[f].y();
+    if (y < 0.05) bottom.push_back(f);
+    if (y > 1.95) top.push_back(f);
+  }
+  add_handle(state, *topology, topology->rest_points, bottom, HandleMode::Fixed);
+  add_handle(state, *topology, topology->rest_points, top, HandleMode::Pose);
+  state.handles[1].pose.rotation = Eigen::Quaterniond(Eigen::AngleAxisd(2.8, Vec3::UnitY()));
+  auto p = std::make_shared<SolverProblem>();
+  p->mesh = mesh;
+  p->topology = topology;
+  p->inputs = deformation_inputs(state);
+  p->spec.max_iterations = 1;  // no limit applies without set_iteration_limit(true)
+  // The format's thin layer (height 1 in mean edge lengths) converges slowly on this twist.
+  p->inputs.params.height = 1.0;
+  p->inputs.params.height_unit = HeightUnit::MeanEdgeLength;
+  SolverWorker w;
+  w.set_iteration_limit(false);
+  w.submit_problem(p);
+  for (int i = 0; i < 2000 && w.status().total_iterations < 1 &&
+                  w.status().phase != SolverPhase::Settled;
+       ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  w.stop();
+  ASSERT_TRUE(w.wait_idle(60));
+  const SolverStatus stopped = w.status();
+  ASSERT_EQ(stopped.phase, SolverPhase::Stopped);
+  EXPECT_TRUE(stopped.stopped_by_user);
+  ASSERT_TRUE(stopped.geometry && stopped.geometry->face_motions);  // the shape shown is kept
+  // The same targets again: solves on, to convergence (past the limit of 1).
+  SolverTargets targets;
+  for (const HandleGroup& g : state.handles) targets.handles.push_back(g.transform());
+  w.submit_targets(targets);
+  ASSERT_TRUE(w.wait_idle(120));
+  EXPECT_EQ(w.status().phase, SolverPhase::Settled);
+  EXPECT_FALSE(w.status().stopped_by_user);
+  EXPECT_LE(w.status().energy, stopped.energy);
 }

@@ -41,7 +41,11 @@ const char* tool_label(Tool tool) {
 }
 
 Editor::Editor(std::function<void()> wake_ui)
-    : wake_ui_(std::move(wake_ui)), worker_(std::make_unique<SolverWorker>(wake_ui_)) {}
+    : wake_ui_(std::move(wake_ui)), worker_(std::make_unique<SolverWorker>(wake_ui_)) {
+  // The editor settles until converged (Stop ends it early); solver.max_iterations is for
+  // batch commands (docs/editor.md).
+  worker_->set_iteration_limit(false);
+}
 
 Editor::~Editor() {
   if (task_.valid()) task_.wait();
@@ -229,6 +233,10 @@ void Editor::sync_solver() {
   }
   sent_ = s;
   sent_any_ = true;
+}
+
+void Editor::stop_solving() {
+  if (doc_ && status_.busy()) worker_->stop();
 }
 
 bool Editor::continue_solving() {

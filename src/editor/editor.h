@@ -112,8 +112,9 @@ class Editor {
   void delete_handle(int index);
   void reset_handle(int index);
   void reset_all_handles();
-  // After the solver stopped at its iteration limit (solver.max_iterations): another run of
-  // that many iterations from where it stopped. False when it had not stopped.
+  // The editor's solver settles until converged; Stop ends a solve early, where it is, and
+  // Continue solves on from there (to convergence). False when it had not stopped.
+  void stop_solving();
   bool continue_solving();
   void set_active_handle(int index);
   void set_handle_mode(int index, HandleMode mode);

@@ -60,7 +60,7 @@ const char* phase_label(SolverPhase phase) {
     case SolverPhase::Building: return "building prisms";
     case SolverPhase::Solving: return "solving";
     case SolverPhase::Settled: return "settled";
-    case SolverPhase::Stopped: return "stopped (iteration limit)";
+    case SolverPhase::Stopped: return "stopped";
     case SolverPhase::Failed: return "failed";
   }
   return "?";
@@ -116,6 +116,19 @@ void SolverWorker::set_outputs(bool energy_map, bool prism_corners) {
   wake_.notify_all();
 }
 
+void SolverWorker::set_iteration_limit(bool limited) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  iteration_limit_ = limited;
+}
+
+void SolverWorker::stop() {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    stop_requested_ = true;
+  }
+  wake_.notify_all();
+}
+
 SolverStatus SolverWorker::status() const {
   std::lock_guard<std::mutex> lock(mutex_);
   return status_;
@@ -156,12 +169,13 @@ void SolverWorker::run() {
     std::shared_ptr<const SolverProblem> problem;
     std::unique_ptr<SolverTargets> targets;
     std::uint64_t problem_serial = 0, targets_serial = 0;
-    bool outputs_changed = false;
+    bool outputs_changed = false, stop_now = false;
     {
       std::unique_lock<std::mutex> lock(mutex_);
       const bool solving = status_.phase == SolverPhase::Solving;
       wake_.wait(lock, [&] {
-        return stop_ || pending_problem_ || pending_targets_ || outputs_dirty_ || solving;
+        return stop_ || pending_problem_ || pending_targets_ || outputs_dirty_ ||
+               stop_requested_ || solving;
       });
       if (stop_) return;
       problem = std::move(pending_problem_);
@@ -170,12 +184,28 @@ void SolverWorker::run() {
       targets_serial = pending_targets_serial_;
       outputs_changed = outputs_dirty_;
       outputs_dirty_ = false;
+      // A stop asked for before a new request arrived ends the solve that was running.
+      stop_now = stop_requested_ && !pending_problem_ && !pending_targets_ &&
+                 status_.phase == SolverPhase::Solving;
+      stop_requested_ = false;
+      limited_ = iteration_limit_;
       energy_on_ = want_energy_;
       prisms_on_ = want_prisms_;
     }
     if (problem || targets) {
       last_request_ = Clock::now();
       confirming_ = false;
+      std::lock_guard<std::mutex> lock(mutex_);
+      status_.stopped_by_user = false;
+    }
+    if (stop_now) {
+      {
+        std::lock_guard<std::mutex> lock(mutex_);
+        status_.stopped_by_user = true;
+      }
+      publish_geometry(true);
+      set_phase(SolverPhase::Stopped);
+      continue;
     }
     if (problem) {
       if (build(*problem)) built_problem_serial_ = problem_serial;
@@ -266,7 +296,8 @@ void SolverWorker::step() {
   const bool dragging =
       std::chrono::duration<double>(Clock::now() - last_request_).count() < kDragPauseSeconds;
   const int batch = dragging ? chunk_ : std::max(chunk_, kSettleBatch);
-  options.max_iterations = std::max(0, std::min(batch, problem_->spec.max_iterations - done));
+  options.max_iterations =
+      limited_ ? std::max(0, std::min(batch, problem_->spec.max_iterations - done)) : batch;
   // A jump (undo, typed values, an opened scenario) is followed in sub-steps, a batch at a
   // time, so new targets are still picked up between batches.
   options.path.max_iterations = std::max(1, batch);
@@ -330,7 +361,7 @@ void SolverWorker::step() {
     status_.progress = std::max(status_.progress, progress);
     if (converged)
       next = SolverPhase::Settled;
-    else if (status_.iterations >= problem_->spec.max_iterations)
+    else if (limited_ && status_.iterations >= problem_->spec.max_iterations)
       next = SolverPhase::Stopped;
     if (next != SolverPhase::Solving) status_.progress = 1.0;
   }

@@ -84,6 +84,7 @@ struct SolverStatus {
   double progress = 0.0;     // rough convergence estimate in [0, 1]
   std::string detail;        // what a long first iteration does ("building the hierarchy")
   bool solver_ready = false;  // the solver of the current problem is set up (no first-use pause)
+  bool stopped_by_user = false;  // Stopped by SolverWorker::stop, not by the iteration limit
   std::chrono::steady_clock::time_point phase_start;
   std::shared_ptr<const SolverGeometry> geometry;
 
@@ -103,6 +104,13 @@ class SolverWorker {
   std::uint64_t submit_targets(SolverTargets targets);
   // What to compute at each publication besides positions and normals.
   void set_outputs(bool energy_map, bool prism_corners);
+  // With the limit (the default, as batch commands and replays have it), a request stops at
+  // the problem's solver.max_iterations; without it (the editor), it settles until converged
+  // unless stop() is called.
+  void set_iteration_limit(bool limited);
+  // Ends the current solve where it is (phase Stopped, stopped_by_user); the next request, or
+  // the same targets submitted again, solves on from there.
+  void stop();
 
   SolverStatus status() const;
   // True when the latest request has been fully handled (settled, stopped or failed).
@@ -129,6 +137,8 @@ class SolverWorker {
   std::unique_ptr<SolverTargets> pending_targets_;
   std::uint64_t pending_targets_serial_ = 0;
   bool want_energy_ = false, want_prisms_ = false, outputs_dirty_ = false;
+  bool iteration_limit_ = true;
+  bool stop_requested_ = false;
   SolverStatus status_;
 
   // Worker-thread only.
@@ -142,6 +152,7 @@ class SolverWorker {
   bool energy_on_ = false, prisms_on_ = false;
   std::uint64_t geometry_serial_ = 0;
   std::uint64_t built_problem_serial_ = 0;  // the request deformer_ was built from
+  bool limited_ = true;  // iteration_limit_ as of the latest request
 
   std::thread thread_;
 };

@@ -403,9 +403,12 @@ void solver_section(Editor& e) {
   if (st.phase == SolverPhase::Stopped) {
     ImGui::SameLine();
     if (ImGui::SmallButton("Continue")) e.continue_solving();
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("Solve on from here until converged");
+  } else if (st.busy() && st.phase != SolverPhase::Building) {
+    ImGui::SameLine();
+    if (ImGui::SmallButton("Stop")) e.stop_solving();
     if (ImGui::IsItemHovered())
-      ImGui::SetTooltip("Solve on from here for another %d iterations (solver.max_iterations)",
-                        e.document() ? e.document()->solver.max_iterations : 0);
+      ImGui::SetTooltip("Stop converging and keep the shape shown (Continue solves on)");
   }
   ImGui::ProgressBar(float(st.progress), ImVec2(-1, 0),
                      st.phase == SolverPhase::Building ? "building prisms"
