@@ -55,6 +55,16 @@ TempDirectories& temp_directories() {
 
 }  // namespace
 
+// The editor keeps autosaves and its recent-files list in the user's folders; tests must not
+// touch the real ones (nor see what is there), so every test process gets its own.
+const bool kUserFoldersIsolated = [] {
+  const fs::path root = fs::temp_directory_path() / ("primo-test-user-" + std::to_string(::getpid()));
+  ::setenv("PRIMO_STATE_DIR", (root / "state").c_str(), 1);
+  ::setenv("PRIMO_CONFIG_DIR", (root / "config").c_str(), 1);
+  temp_directories().add(root);
+  return true;
+}();
+
 std::string temp_dir() {
   static std::atomic<int> counter{0};
   fs::path dir = fs::temp_directory_path() /

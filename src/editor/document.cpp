@@ -32,6 +32,7 @@ std::unique_ptr<Document> make_document(Mesh mesh, std::string mesh_path) {
   doc->mesh_path = std::move(mesh_path);
   doc->state = initial_edit_state(doc->n_faces());
   doc->history.reset(doc->state);
+  doc->saved_state = doc->state;
   return doc;
 }
 
@@ -45,6 +46,7 @@ std::unique_ptr<Document> load_document(const std::string& path) {
   doc->solver = scenario.solver;
   doc->state = import_scenario(scenario, resolved, *doc->topology);
   doc->start_motions = resolved.start_motions;
+  doc->saved_state = doc->state;
   doc->history.reset(doc->state);
   return doc;
 }

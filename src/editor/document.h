@@ -24,6 +24,7 @@ struct Document {
   // The opened scenario's solved state, handed to the solver with the first problem.
   std::vector<RigidTransform> start_motions;
   EditState state;            // live: gestures edit it, `commit` records it
+  EditState saved_state;      // as opened or last saved: what "unsaved changes" compares with
   UndoStack history;
 
   int n_faces() const { return topology->n_faces; }

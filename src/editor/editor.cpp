@@ -53,14 +53,23 @@ Editor::~Editor() {
 
 // --- Files ------------------------------------------------------------------------------
 
-void Editor::open(const std::string& path) {
+void Editor::open(const std::string& path) { open_file(path, false); }
+
+void Editor::open_file(const std::string& path, bool recovered) {
   if (task_.valid()) return error("Still busy with " + task_label_ + "; try again when it is done");
-  task_label_ = "Opening " + file_name(path);
+  task_label_ = (recovered ? "Recovering " : "Opening ") + file_name(path);
   task_started_ = clock_;
-  task_ = std::async(std::launch::async, [this, path]() -> std::function<void()> {
+  task_ = std::async(std::launch::async, [this, path, recovered]() -> std::function<void()> {
     std::shared_ptr<Document> doc = load_document(path);
-    return [this, doc]() mutable {
+    return [this, doc, path, recovered]() mutable {
+      if (recovered) {
+        // Unsaved work with no file of its own: Save asks where, and it counts as changed.
+        doc->scenario_path.clear();
+        doc->saved_state = initial_edit_state(doc->n_faces());
+      }
       apply_document(std::make_unique<Document>(std::move(*doc)));
+      if (!recovered) recent_.add(path);
+      last_autosave_ = clock_;
     };
   });
 }
@@ -110,22 +119,34 @@ void Editor::save_mesh(const std::string& path) {
   });
 }
 
-void Editor::save_scenario(const std::string& path) {
-  if (!doc_) return error("Nothing to save: open a mesh first");
+std::string Editor::scenario_text(const std::string& path) const {
+  // The pose shown, when the solver has finished with the current state: reopening the
+  // scenario or `primo deform` then starts there (docs/editor.md).
+  const SolverGeometry* shown = geometry_.get();
+  const bool solved = !status_.busy() && shown && shown->face_motions &&
+                      int(shown->face_motions->size()) == doc_->n_faces();
+  const Scenario s = export_scenario(doc_->state, doc_->mesh_path, path, doc_->solver,
+                                     solved ? shown->face_motions.get() : nullptr);
+  return scenario_to_json(s);
+}
+
+bool Editor::save_scenario(const std::string& path) {
+  if (!doc_) {
+    error("Nothing to save: open a mesh first");
+    return false;
+  }
   try {
-    // The pose shown, when the solver has finished with the current state: reopening the
-    // scenario or `primo deform` then starts there (docs/editor.md).
-    const SolverGeometry* shown = geometry_.get();
-    const bool solved = !status_.busy() && shown && shown->face_motions &&
-                        int(shown->face_motions->size()) == doc_->n_faces();
-    const Scenario s = export_scenario(doc_->state, doc_->mesh_path, path, doc_->solver,
-                                       solved ? shown->face_motions.get() : nullptr);
-    app::write_text_atomically(path, scenario_to_json(s));
-    doc_->scenario_path = path;
-    info("Saved the scenario to " + path);
+    app::write_text_atomically(path, scenario_text(path));
   } catch (const std::exception& e) {
     error(e.what());
+    return false;
   }
+  doc_->scenario_path = path;
+  doc_->saved_state = doc_->state;
+  forget_autosave();
+  recent_.add(path);
+  info("Saved the scenario to " + path);
+  return true;
 }
 
 double Editor::file_task_seconds() const { return task_.valid() ? clock_ - task_started_ : 0.0; }
@@ -152,6 +173,10 @@ void Editor::update(double seconds) {
   }
   if (!doc_) return;
   sessions.update(*this, seconds);
+  if (autosave_every_ > 0 && clock_ - last_autosave_ >= autosave_every_) {
+    last_autosave_ = clock_;
+    if (has_unsaved_changes()) autosave_now();
+  }
 
   if (gesture_ == Gesture::Paint && clock_ - last_paint_sync_ >= kPaintSyncSeconds) {
     sync_solver();
@@ -290,7 +315,7 @@ void Editor::handle_event(const InputEvent& e, bool ui_mouse, bool ui_keyboard) 
       break;
     case InputEvent::Type::Char: break;
     case InputEvent::Type::Drop:
-      if (!e.paths.empty()) open(e.paths.front());
+      if (!e.paths.empty()) request_open(e.paths.front());
       break;
   }
 }

@@ -9,6 +9,7 @@
 #include <functional>
 #include <future>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -17,6 +18,7 @@
 #include "gizmo.h"
 #include "input.h"
 #include "paint.h"
+#include "recent_files.h"
 #include "screen_region.h"
 #include "session_control.h"
 #include "solver_worker.h"
@@ -77,10 +79,38 @@ class Editor {
   void open(const std::string& path);   // in the background; errors become messages
   void adopt(std::unique_ptr<Document> document);
   void save_mesh(const std::string& path);      // in the background, the latest result
-  void save_scenario(const std::string& path);  // at once
+  // At once; false (with an error message) when it could not be written. A saved document
+  // has no unsaved changes, and its autosave is removed.
+  bool save_scenario(const std::string& path);
   bool file_task_running() const { return task_.valid(); }
   const std::string& file_task_label() const { return task_label_; }
   double file_task_seconds() const;
+
+  // --- Unsaved work (editor_unsaved_work.cpp) ------------------------------------------
+  // Changes since the document was opened or last saved as a scenario: handles, poses,
+  // material, painting (the selection and which handle is active do not count).
+  bool has_unsaved_changes() const;
+  // What the UI asks before work would be discarded: save, discard or cancel.
+  enum class DiscardAnswer { Save, Discard, Cancel };
+  struct DiscardQuestion {
+    enum class Then { Open, Quit } then = Then::Open;
+    std::string path;  // Then::Open: the file to open
+  };
+  // Opens `path`, or first asks (discard_question()) when the open document has unsaved
+  // changes. File > Open, drag and drop and Open Recent come here; scripts open directly.
+  void request_open(const std::string& path);
+  // True when the window may close now; otherwise the question is asked.
+  bool ask_to_quit();
+  const std::optional<DiscardQuestion>& discard_question() const { return discard_question_; }
+  // Save writes the scenario to `save_path` (the document's own scenario when empty) and then
+  // goes on; a failed save keeps the question. Discard goes on; Cancel forgets the question.
+  void answer_discard(DiscardAnswer answer, const std::string& save_path = {});
+  // Autosave (autosave.h): every `seconds` while there are unsaved changes (0: never).
+  void set_autosave_interval(double seconds) { autosave_every_ = seconds; }
+  bool autosave_now();  // writes the autosave of the open document; false when it could not
+  // Opens an autosaved scenario as unsaved work with no file of its own (Save asks where).
+  void recover(const std::string& autosave_file);
+  RecentFiles& recent_files() { return recent_; }
 
   // --- Per frame ------------------------------------------------------------------------
   // Finishes file tasks, sends edits to the solver, picks up its newest result, animates the
@@ -199,6 +229,14 @@ class Editor {
   ViewportRect viewport_;
   Picker* picker_ = nullptr;
   std::unique_ptr<SolverWorker> worker_;
+
+  // Unsaved work.
+  void open_file(const std::string& path, bool recovered);
+  std::string scenario_text(const std::string& path) const;  // the document as saved there
+  void forget_autosave();
+  std::optional<DiscardQuestion> discard_question_;
+  double autosave_every_ = 120.0, last_autosave_ = 0.0;
+  RecentFiles recent_;
 
   // Solver bookkeeping.
   EditState sent_;

@@ -5,8 +5,9 @@
 #include <imgui_impl_glfw.h>
 #include <imgui_impl_opengl3.h>
 
+#include <atomic>
 #include <chrono>
-#include <cstdlib>
+#include <csignal>
 #include <cstdlib>
 #include <cstdio>
 #include <filesystem>
@@ -26,6 +27,12 @@
 
 namespace primo::editor {
 namespace {
+
+// SIGINT, SIGTERM and SIGHUP (Ctrl+C in the terminal, a logout, a kill) only set this flag:
+// writing files is not safe inside a signal handler, so the main loop autosaves the unsaved
+// work and quits at its next frame.
+std::atomic<bool> g_termination_requested{false};
+extern "C" void on_termination_signal(int) { g_termination_requested = true; }
 
 std::string g_glfw_error;
 constexpr double kFrameSeconds = 1.0 / 60.0;
@@ -396,11 +403,23 @@ int App::run() {
   }
   screenshot_run_ = !options_.screenshot.empty();
   if (screenshot_run_ && !options_.screenshot_ui) ui_.show_panels = false;
+  // Scripted and screenshot runs are automation: no recovery prompt in their way.
+  if (script_ || screenshot_run_) ui_.recovery_checked = true;
   if (!options_.input.empty()) editor_.open(options_.input);
 
   double last = glfwGetTime();
   start_ = last;
-  while (!quit_ && !glfwWindowShouldClose(window_)) {
+  for (;;) {
+    if (g_termination_requested) {
+      if (editor_.has_unsaved_changes()) editor_.autosave_now();
+      break;
+    }
+    // The window's close button asks first when there is unsaved work.
+    if (glfwWindowShouldClose(window_)) {
+      if (editor_.ask_to_quit()) break;
+      glfwSetWindowShouldClose(window_, GLFW_FALSE);
+    }
+    if (quit_) break;
     const bool animate = editor_.solver_status().busy() || editor_.file_task_running() || script_ ||
                          screenshot_run_ || editor_.gesture() != Editor::Gesture::None ||
                          editor_.camera().update(0.0) || renderer_->drew_proxy();
@@ -439,6 +458,7 @@ int App::run() {
 }  // namespace
 
 int run_editor(const EditorOptions& options) {
+  for (int sig : {SIGINT, SIGTERM, SIGHUP}) std::signal(sig, on_termination_signal);
   std::setvbuf(stdout, nullptr, _IOLBF, 0);
   glfwSetErrorCallback(glfw_error);
   if (!glfwInit()) {

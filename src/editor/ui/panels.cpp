@@ -462,7 +462,12 @@ void draw_menu(Editor& e, UiState& ui) {
   Document* doc = e.document();
   if (ImGui::BeginMenu("File")) {
     if (ImGui::MenuItem("Open mesh or scenario...", "Ctrl+O")) ask_open(e, ui);
-    if (ImGui::MenuItem("Open the example (Spot)")) e.open(default_mesh_path());
+    if (ImGui::BeginMenu("Open recent", !e.recent_files().entries().empty())) {
+      for (const std::string& path : e.recent_files().entries())
+        if (ImGui::MenuItem(path.c_str())) e.request_open(path);
+      ImGui::EndMenu();
+    }
+    if (ImGui::MenuItem("Open the example (Spot)")) e.request_open(default_mesh_path());
     ImGui::Separator();
     if (ImGui::MenuItem("Save scenario", "Ctrl+S", false, doc != nullptr)) {
       if (doc->scenario_path.empty())
@@ -474,7 +479,7 @@ void draw_menu(Editor& e, UiState& ui) {
     if (ImGui::MenuItem("Export deformed mesh...", "Ctrl+E", false, doc != nullptr)) ask_save_mesh(e, ui);
     if (ImGui::MenuItem("Screenshot...", "F12", false, doc != nullptr)) ask_screenshot(e, ui);
     ImGui::Separator();
-    if (ImGui::MenuItem("Quit", "Ctrl+Q")) ui.quit_requested = true;
+    if (ImGui::MenuItem("Quit", "Ctrl+Q")) ask_quit(e, ui);
     ImGui::EndMenu();
   }
   if (ImGui::BeginMenu("Edit")) {
@@ -676,11 +681,84 @@ void draw_error_popup(Editor& e, UiState& ui) {
   }
 }
 
+// Save / Discard / Cancel before unsaved work would be lost (Editor::discard_question).
+void draw_discard_question(Editor& e, UiState& ui) {
+  const auto& question = e.discard_question();
+  if (!question) return;
+  if (ui.dialog.is_open()) return;  // choosing where to save it
+  if (!ImGui::IsPopupOpen("Unsaved changes")) ImGui::OpenPopup("Unsaved changes");
+  const ImVec2 display = ImGui::GetIO().DisplaySize;
+  ImGui::SetNextWindowPos(ImVec2(display.x * 0.5f, display.y * 0.4f), ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
+  if (!ImGui::BeginPopupModal("Unsaved changes", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) return;
+  const Document* doc = e.document();
+  const std::string name = doc ? fs::path(doc->scenario_path.empty() ? doc->mesh_path : doc->scenario_path)
+                                     .filename()
+                                     .string()
+                               : std::string();
+  const std::string then = question->then == Editor::DiscardQuestion::Then::Quit
+                               ? "before quitting"
+                               : "before opening " + fs::path(question->path).filename().string();
+  ImGui::Text("Save the handles, poses, material and painting of %s %s?", name.c_str(), then.c_str());
+  ImGui::TextDisabled("Discarding loses them and the undo history.");
+  if (ImGui::Button("Save", ImVec2(110, 0))) {
+    ImGui::CloseCurrentPopup();
+    if (doc && !doc->scenario_path.empty()) {
+      e.answer_discard(Editor::DiscardAnswer::Save);
+    } else {
+      ask_save_scenario(e, ui);
+      ui.purpose = UiState::Purpose::SaveBeforeDiscard;
+    }
+  }
+  ImGui::SameLine();
+  if (ImGui::Button("Discard", ImVec2(110, 0))) {
+    ImGui::CloseCurrentPopup();
+    e.answer_discard(Editor::DiscardAnswer::Discard);
+  }
+  ImGui::SameLine();
+  if (ImGui::Button("Cancel", ImVec2(110, 0)) || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape))) {
+    ImGui::CloseCurrentPopup();
+    e.answer_discard(Editor::DiscardAnswer::Cancel);
+  }
+  ImGui::EndPopup();
+}
+
+// Autosaved work left by a run that did not end cleanly, offered once at the start.
+void draw_recovery(Editor& e, UiState& ui) {
+  if (!ui.recovery_checked) {
+    ui.recovery_checked = true;
+    ui.recoverable = list_autosaved_work();
+    if (!ui.recoverable.empty()) ImGui::OpenPopup("Recover unsaved work");
+  }
+  if (!ImGui::BeginPopupModal("Recover unsaved work", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) return;
+  ImGui::TextUnformatted("PriMo kept this work when it last closed without saving it:");
+  for (size_t i = 0; i < ui.recoverable.size(); ++i) {
+    const AutosavedWork& w = ui.recoverable[i];
+    ImGui::PushID(int(i));
+    ImGui::BulletText("%s", w.label.c_str());
+    ImGui::SameLine();
+    if (ImGui::SmallButton("Recover")) {
+      e.recover(w.path);
+      ui.recoverable.clear();
+    } else {
+      ImGui::SameLine();
+      if (ImGui::SmallButton("Delete")) {
+        remove_autosave(w.path);
+        ui.recoverable.erase(ui.recoverable.begin() + long(i));
+      }
+    }
+    ImGui::PopID();
+  }
+  if (ui.recoverable.empty() || ImGui::Button("Later", ImVec2(110, 0)))
+    ImGui::CloseCurrentPopup();
+  ImGui::EndPopup();
+}
+
 void draw_file_dialog(Editor& e, UiState& ui) {
   std::string path;
   if (!ui.dialog.draw(path)) return;
   switch (ui.purpose) {
-    case UiState::Purpose::Open: e.open(path); break;
+    case UiState::Purpose::Open: e.request_open(path); break;
+    case UiState::Purpose::SaveBeforeDiscard: e.answer_discard(Editor::DiscardAnswer::Save, path); break;
     case UiState::Purpose::SaveMesh: e.save_mesh(path); break;
     case UiState::Purpose::SaveScenario: e.save_scenario(path); break;
     case UiState::Purpose::Screenshot:
@@ -722,7 +800,13 @@ void draw_ui(Editor& e, UiState& ui) {
   }
   draw_help(ui);
   draw_error_popup(e, ui);
+  draw_recovery(e, ui);
+  draw_discard_question(e, ui);
   draw_file_dialog(e, ui);
+}
+
+void ask_quit(Editor& e, UiState& ui) {
+  if (e.ask_to_quit()) ui.quit_requested = true;
 }
 
 void ask_open(Editor& e, UiState& ui) {
@@ -789,7 +873,7 @@ bool handle_app_shortcut(const InputEvent& ev, Editor& e, UiState& ui) {
       return true;
     case GLFW_KEY_Q:
       if (!ctrl) return false;
-      ui.quit_requested = true;
+      ask_quit(e, ui);
       return true;
     default: return false;
   }

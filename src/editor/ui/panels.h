@@ -6,6 +6,7 @@
 
 #include <string>
 
+#include "autosave.h"
 #include "editor.h"
 #include "file_dialog.h"
 #include "input.h"
@@ -16,7 +17,13 @@ struct UiState {
   bool show_panels = true;  // false: the viewport fills the window (clean screenshots)
   bool show_help = false;
   FileDialog dialog;
-  enum class Purpose { None, Open, SaveMesh, SaveScenario, Screenshot } purpose = Purpose::None;
+  enum class Purpose {
+    None, Open, SaveMesh, SaveScenario, Screenshot,
+    SaveBeforeDiscard,  // the scenario path for the "Save" answer to Editor::discard_question
+  } purpose = Purpose::None;
+  // Autosaved work offered for recovery once, at the first frame (autosave.h).
+  bool recovery_checked = false;
+  std::vector<AutosavedWork> recoverable;
   // A screenshot to take at the end of this frame.
   std::string screenshot_path;
   bool screenshot_with_ui = true;
@@ -39,5 +46,7 @@ void ask_open(Editor& editor, UiState& ui);
 void ask_save_mesh(Editor& editor, UiState& ui);
 void ask_save_scenario(Editor& editor, UiState& ui);
 void ask_screenshot(Editor& editor, UiState& ui);
+// Quit, or ask first when there is unsaved work (menu, Ctrl+Q, the window's close button).
+void ask_quit(Editor& editor, UiState& ui);
 
 }  // namespace primo::editor

@@ -1,0 +1,53 @@
+#include "recent_files.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "output_files.h"
+#include "user_folders.h"
+
+namespace primo::editor {
+namespace fs = std::filesystem;
+
+RecentFiles::RecentFiles(std::string path)
+    : path_(path.empty() ? config_folder() + "/recent.json" : std::move(path)) {
+  std::ifstream in(path_);
+  if (!in) return;
+  std::stringstream text;
+  text << in.rdbuf();
+  const nlohmann::json j = nlohmann::json::parse(text.str(), nullptr, false);
+  if (!j.is_object() || !j.contains("files") || !j["files"].is_array()) return;
+  for (const auto& f : j["files"])
+    if (f.is_string() && entries_.size() < kMaxEntries) entries_.push_back(f.get<std::string>());
+}
+
+bool RecentFiles::add(const std::string& file) {
+  std::error_code ec;
+  const std::string absolute = fs::absolute(file, ec).lexically_normal().string();
+  const std::string entry = ec ? file : absolute;
+  entries_.erase(std::remove(entries_.begin(), entries_.end(), entry), entries_.end());
+  entries_.insert(entries_.begin(), entry);
+  if (entries_.size() > kMaxEntries) entries_.resize(kMaxEntries);
+  return write();
+}
+
+bool RecentFiles::remove(const std::string& file) {
+  entries_.erase(std::remove(entries_.begin(), entries_.end(), file), entries_.end());
+  return write();
+}
+
+bool RecentFiles::write() const {
+  try {
+    std::error_code ec;
+    fs::create_directories(fs::path(path_).parent_path(), ec);
+    app::write_text_atomically(path_, nlohmann::json{{"files", entries_}}.dump(2) + "\n");
+    return true;
+  } catch (const std::exception&) {
+    return false;
+  }
+}
+
+}  // namespace primo::editor
