@@ -117,3 +117,19 @@ TEST(EditorHandles, ResetAndSpringModeDropRotation) {
   reset_handle(g.state, 0);
   EXPECT_TRUE(g.state.handles[0].pose.is_identity());
 }
+
+TEST(EditorHandles, SaysWhenOneHandleMovesTheWholeMeshRigidly) {
+  const Mesh mesh = make_bar(0.2, 1.0, 2, 10);
+  const MeshTopology t = build_topology(mesh);
+  EditState s = initial_edit_state(t.n_faces);
+  EXPECT_FALSE(moves_whole_mesh_rigidly(s));  // no handle: nothing moves
+  add_handle(s, t, t.rest_points, {0, 1}, HandleMode::Pose);
+  EXPECT_TRUE(moves_whole_mesh_rigidly(s));
+  add_handle(s, t, t.rest_points, {5}, HandleMode::Spring);
+  EXPECT_TRUE(moves_whole_mesh_rigidly(s)) << "a spring does not hold the mesh";
+  add_handle(s, t, t.rest_points, {20, 21}, HandleMode::Fixed);
+  EXPECT_FALSE(moves_whole_mesh_rigidly(s));
+  remove_handle(s, 2);
+  add_handle(s, t, t.rest_points, {30}, HandleMode::Position);
+  EXPECT_FALSE(moves_whole_mesh_rigidly(s)) << "two handles pull against each other";
+}

@@ -133,3 +133,11 @@ TEST(EditorSessions, ShippedSessionIsValid) {
     undo = undo || ev.type == SessionEvent::Type::Undo, redo = redo || ev.type == SessionEvent::Type::Redo;
   EXPECT_TRUE(undo && redo);
 }
+
+TEST(SessionControl, ProposesAFilePerMeshAndReadableDurations) {
+  EXPECT_EQ(default_session_path("/models/spot.obj"), "/models/spot.session.json");
+  EXPECT_NE(default_session_path("/models/spot.obj"), default_session_path("/models/bunny.off"));
+  EXPECT_EQ(format_duration(8.078583), "8.1 s");
+  EXPECT_EQ(format_duration(0.0), "0.0 s");
+  EXPECT_EQ(format_duration(125.4), "2 min 05 s");
+}

@@ -153,6 +153,16 @@ void reset_handle(EditState& state, int index) {
   state.handles[index].pose = Pose{};
 }
 
+bool moves_whole_mesh_rigidly(const EditState& state) {
+  int holding = 0;
+  for (const HandleGroup& g : state.handles) {
+    if (g.mode == HandleMode::Spring) continue;
+    if (g.mode == HandleMode::Fixed) return false;
+    ++holding;
+  }
+  return holding == 1;
+}
+
 double factor_at(const FactorArray& factors, int face) {
   return factors ? (*factors)[face] : 1.0;
 }

@@ -63,6 +63,11 @@ DeformationInputs deformation_inputs(const EditState& state);
 // and factors; only poses may differ.
 bool same_structure(const EditState& a, const EditState& b);
 
+// True when at most one group holds the mesh (springs aside) and it is not a fixed region:
+// the minimum then moves the whole mesh rigidly with that handle (PriMo's rest pose is only
+// defined up to a rigid motion), which surprises a new user; the Handles panel says why.
+bool moves_whole_mesh_rigidly(const EditState& state);
+
 // Group index per face (-1 for free faces). A face in several groups shows the last.
 std::vector<int> face_groups(const EditState& state, int n_faces);
 

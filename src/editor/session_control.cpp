@@ -1,11 +1,31 @@
 #include "session_control.h"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
 
 #include "editor.h"
 #include "primo/error.h"
 
 namespace primo::editor {
+
+std::string default_session_path(const std::string& mesh_path) {
+  const std::filesystem::path mesh(mesh_path);
+  return (mesh.parent_path() / (mesh.stem().string() + ".session.json")).string();
+}
+
+std::string format_duration(double seconds) {
+  char text[32];
+  if (!(seconds >= 0.0)) seconds = 0.0;
+  if (seconds < 60.0) {
+    std::snprintf(text, sizeof text, "%.1f s", seconds);
+  } else {
+    const long long whole = (long long)std::llround(seconds);
+    std::snprintf(text, sizeof text, "%lld min %02lld s", whole / 60, whole % 60);
+  }
+  return text;
+}
 
 void SessionControl::start_recording(Editor& e) {
   Document* doc = e.document();
@@ -54,7 +74,7 @@ void SessionControl::open_playback(Editor& e, const std::string& path) {
     doc_ = doc;
     show(e, 0.0);
     e.info("Session " + path + ": " + std::to_string(playback_.events.size()) + " events, " +
-           std::to_string(playback_.duration()) + " s");
+           format_duration(playback_.duration()));
   } catch (const std::exception& ex) {
     e.error(ex.what());
   }

@@ -17,6 +17,12 @@ namespace primo::editor {
 
 class Editor;
 
+// Where the Session panel proposes to save a recording of `mesh_path`: beside the mesh, named
+// after it (spot.obj -> spot.session.json), so that meshes of one folder do not share a file.
+std::string default_session_path(const std::string& mesh_path);
+// A duration as people read it: "8.1 s", "2 min 05 s".
+std::string format_duration(double seconds);
+
 class SessionControl {
  public:
   // --- Recording ------------------------------------------------------------------------

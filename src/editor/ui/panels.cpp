@@ -260,6 +260,12 @@ void handles_section(Editor& e) {
       ImGui::TextDisabled("%s", mode_label(h.mode));
     }
     ImGui::EndTable();
+    if (moves_whole_mesh_rigidly(s)) {
+      ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.8f, 0.3f, 1));
+      ImGui::TextWrapped("Only one handle holds the mesh, so the whole mesh follows it rigidly. "
+                         "Make a fixed region (Ctrl+Shift+G) where it should stay.");
+      ImGui::PopStyleColor();
+    }
   }
   if (s.active < 0 || s.active >= int(s.handles.size())) return;
   HandleGroup& h = s.handles[s.active];
@@ -499,7 +505,8 @@ void draw_menu(Editor& e, UiState& ui) {
     if (ImGui::MenuItem("Spring from selection", "Ctrl+Alt+G")) e.make_handle(HandleMode::Spring);
     const bool active = doc && doc->state.active >= 0;
     if (ImGui::MenuItem("Reset active handle", "Alt+G", false, active)) e.reset_handle(doc->state.active);
-    if (ImGui::MenuItem("Reset all handles", "Alt+Shift+G", false, doc != nullptr)) e.reset_all_handles();
+    if (ImGui::MenuItem("Reset all handles", "Alt+Shift+G", false, doc && !doc->state.handles.empty()))
+      e.reset_all_handles();
     if (ImGui::MenuItem("Delete active handle", "Del", false, active)) e.delete_handle(doc->state.active);
     ImGui::EndMenu();
   }

@@ -11,10 +11,13 @@ namespace primo::editor {
 void session_section(Editor& e) {
   if (!ImGui::CollapsingHeader("Session")) return;
   SessionControl& s = e.sessions;
-  static std::string path;
+  // The path field proposes a file per mesh, again whenever another mesh is opened.
+  static std::string path, proposed_for;
   const Document* doc = e.document();
-  if (path.empty() && doc)
-    path = (std::filesystem::path(doc->mesh_path).parent_path() / "pose.session.json").string();
+  if (doc && doc->mesh_path != proposed_for) {
+    proposed_for = doc->mesh_path;
+    path = default_session_path(doc->mesh_path);
+  }
 
   if (!s.recording()) {
     if (ImGui::Button("Record")) s.start_recording(e);
