@@ -401,3 +401,21 @@ TEST(EditorSession, ALassoClosedNearItsStartSelectsWhatItEncloses) {
   for (auto m : *s.editor.document()->state.selection) n += m ? 1 : 0;
   EXPECT_EQ(n, 0);
 }
+
+TEST(EditorSession, TheHistoryListGoesBackToAnyStep) {
+  Harness s;
+  s.two_handles();
+  ASSERT_TRUE(s.settle());
+  const size_t before_drag = s.editor.document()->history.position();
+  const std::vector<Vec3> rest = s.editor.positions();
+  s.drag("Handle 2", 80, -30);
+  ASSERT_TRUE(s.settle());
+  ASSERT_GT(max_distance(s.editor.positions(), rest), 0.01 * s.diagonal());
+  s.editor.go_to_history(before_drag);  // as if clicked in Edit > History
+  ASSERT_TRUE(s.settle());
+  EXPECT_EQ(s.editor.document()->history.position(), before_drag);
+  EXPECT_LT(max_distance(s.editor.positions(), rest), 1e-6 * s.diagonal());
+  s.editor.go_to_history(before_drag + 1);  // and forward again
+  ASSERT_TRUE(s.settle());
+  EXPECT_GT(max_distance(s.editor.positions(), rest), 0.01 * s.diagonal());
+}

@@ -49,3 +49,20 @@ TEST(EditorUndo, OldestStepsFallOff) {
   EXPECT_EQ(u.undo().prisms.height, 3.0);
   EXPECT_FALSE(u.can_undo());
 }
+
+TEST(UndoStack, GoesToAnyStepOfTheVisibleHistory) {
+  UndoStack u(with_height(1.0));
+  u.push("a", with_height(2.0));
+  u.push("b", with_height(3.0));
+  u.push("c", with_height(4.0));
+  ASSERT_EQ(u.size(), 4u);
+  EXPECT_EQ(u.label(2), "b");
+  EXPECT_EQ(u.position(), 3u);
+  EXPECT_EQ(u.go_to(1).prisms.height, 2.0);
+  EXPECT_EQ(u.position(), 1u);
+  EXPECT_EQ(u.redo_label(), "b");  // the later steps stay, as after undos
+  EXPECT_EQ(u.go_to(3).prisms.height, 4.0);
+  EXPECT_EQ(u.go_to(0).prisms.height, 1.0);
+  EXPECT_FALSE(u.can_undo());
+  EXPECT_EQ(u.go_to(99).prisms.height, 1.0) << "out of range: stays";
+}

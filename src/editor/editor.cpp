@@ -769,6 +769,15 @@ void Editor::undo() {
   info("Undo " + label);
 }
 
+void Editor::go_to_history(std::size_t index) {
+  if (!doc_ || index >= doc_->history.size() || index == doc_->history.position()) return;
+  cancel_gesture();
+  doc_->state = doc_->history.go_to(index);
+  overlay_changed_ = true;
+  sync_solver();
+  info("Back to: " + (index == 0 ? std::string("as opened") : doc_->history.label(index)));
+}
+
 void Editor::redo() {
   if (!doc_) return;
   cancel_gesture();

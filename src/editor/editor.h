@@ -133,6 +133,8 @@ class Editor {
   // --- Commands -------------------------------------------------------------------------
   void undo();
   void redo();
+  // Jumps to step `index` of the undo history (UndoStack::label), as undos or redos would.
+  void go_to_history(std::size_t index);
   void select_all();
   void clear_selection();
   void invert_selection();

@@ -27,6 +27,11 @@ std::string UndoStack::undo_label() const { return can_undo() ? steps_[index_].l
 
 std::string UndoStack::redo_label() const { return can_redo() ? steps_[index_ + 1].label : ""; }
 
+const EditState& UndoStack::go_to(std::size_t i) {
+  if (i < steps_.size()) index_ = i;
+  return current();
+}
+
 const EditState& UndoStack::undo() {
   if (can_undo()) --index_;
   return current();

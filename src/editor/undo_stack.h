@@ -30,6 +30,11 @@ class UndoStack {
   const EditState& redo();
   const EditState& current() const { return steps_[index_].state; }
   std::size_t size() const { return steps_.size(); }
+  // The visible history (Edit > History): step i's label (step 0 is the opened document) and
+  // which step is current. go_to moves there as that many undos or redos would.
+  const std::string& label(std::size_t i) const { return steps_[i].label; }
+  std::size_t position() const { return index_; }
+  const EditState& go_to(std::size_t i);
 
  private:
   struct Step {

@@ -326,6 +326,28 @@ void handles_section(Editor& e) {
   ImGui::PopID();
 }
 
+// The undo history as a list: the current step highlighted, undone steps dimmed; a click goes
+// there (Editor::go_to_history).
+void history_section(Editor& e) {
+  Document* doc = e.document();
+  if (!ImGui::CollapsingHeader("History") || !doc) return;
+  const UndoStack& h = doc->history;
+  const float rows = std::min(10.0f, float(h.size()));
+  if (!ImGui::BeginListBox("##history", ImVec2(-1, rows * ImGui::GetTextLineHeightWithSpacing() + 6)))
+    return;
+  for (std::size_t i = 0; i < h.size(); ++i) {
+    ImGui::PushID(int(i));
+    const bool undone = i > h.position();
+    if (undone) ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+    const std::string label = i == 0 ? "(as opened)" : h.label(i);
+    if (ImGui::Selectable(label.c_str(), i == h.position())) e.go_to_history(i);
+    if (undone) ImGui::PopStyleColor();
+    if (i == h.position() && ImGui::IsWindowAppearing()) ImGui::SetScrollHereY();
+    ImGui::PopID();
+  }
+  ImGui::EndListBox();
+}
+
 void prisms_section(Editor& e) {
   Document* doc = e.document();
   if (!ImGui::CollapsingHeader("Material (prisms)", ImGuiTreeNodeFlags_DefaultOpen) || !doc) return;
@@ -451,7 +473,8 @@ void draw_properties(Editor& e, UiState& ui, float top, float height) {
   // moved the second).
   const std::pair<const char*, void (*)(Editor&)> sections[] = {
       {"tool", tool_section},       {"handles", handles_section}, {"prisms", prisms_section},
-      {"display", display_section}, {"solver", solver_section},   {"session", session_section}};
+      {"history", history_section}, {"display", display_section}, {"solver", solver_section},
+      {"session", session_section}};
   for (const auto& [id, draw] : sections) {
     ImGui::PushID(id);
     draw(e);
