@@ -202,3 +202,39 @@ TEST(EditorE2E, ScreenshotFromTheCommandLine) {
   EXPECT_FALSE(fs::exists(dir + "/none.png"));
   EXPECT_NE(read_text(dir + "/broken.log").find("broken.json"), std::string::npos);
 }
+
+TEST(EditorE2E, AnOpenMenuTakesTheKeysAndEscapeClosesIt) {
+  // With the File menu open, Ctrl+Z must not undo the drag behind it; Esc closes the menu,
+  // and Ctrl+Z then undoes. The saved scenarios tell which happened.
+  const std::string dir = artifacts("menu-keys");
+  const std::string scenario = make_bar_scenario(dir);
+  write_text(dir + "/menu.txt", R"(wait-settled 60
+move @top
+press left
+move @top 160 40 over 0.5
+release left
+wait-settled 120
+move 25 11
+click left
+wait 0.3
+key ctrl+z
+wait 0.3
+save-scenario )" + dir + R"(/menu-open.json
+key escape
+wait 0.3
+key ctrl+z
+wait-settled 120
+save-scenario )" + dir + R"(/after-escape.json
+quit
+)");
+  const int code = run(kPrimo + " edit " + scenario + " --script " + dir + "/menu.txt > " + dir +
+                       "/editor.log 2>&1");
+  std::printf("%s", read_text(dir + "/editor.log").c_str());
+  ASSERT_EQ(code, 0);
+  const Scenario open = load_scenario(dir + "/menu-open.json");
+  const Scenario closed = load_scenario(dir + "/after-escape.json");
+  ASSERT_EQ(open.handles.size(), 2u);
+  ASSERT_EQ(closed.handles.size(), 2u);
+  EXPECT_GT(open.handles[1].transform.translate.norm(), 0.05) << "Ctrl+Z reached the editor";
+  EXPECT_LT(closed.handles[1].transform.translate.norm(), 1e-12) << "the menu kept the keys";
+}

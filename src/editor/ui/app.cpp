@@ -326,7 +326,17 @@ void App::frame(double now, double dt) {
   const ViewportRect vp = viewport_rect(ui_, float(win_w), float(win_h), scale);
   editor_.set_viewport(vp);
 
+  // An open menu (or other non-modal popup) owns the keyboard: Esc closes it, and no shortcut
+  // reaches the editor behind it (Ctrl+Z with the File menu open used to undo).
+  const bool menu_open =
+      ImGui::IsPopupOpen("", ImGuiPopupFlags_AnyPopupId | ImGuiPopupFlags_AnyPopupLevel) &&
+      !ImGui::GetTopMostPopupModal();
   for (const InputEvent& e : queue_) {
+    if (menu_open && (e.type == InputEvent::Type::Key || e.type == InputEvent::Type::Char)) {
+      if (e.type == InputEvent::Type::Key && e.key == GLFW_KEY_ESCAPE && e.action == GLFW_PRESS)
+        ImGui::ClosePopupToLevel(0, true);
+      continue;
+    }
     if (!io.WantCaptureKeyboard && handle_app_shortcut(e, editor_, ui_)) continue;
     editor_.handle_event(e, io.WantCaptureMouse, io.WantCaptureKeyboard);
   }
