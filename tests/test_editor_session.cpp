@@ -419,3 +419,19 @@ TEST(EditorSession, TheHistoryListGoesBackToAnyStep) {
   ASSERT_TRUE(s.settle());
   EXPECT_GT(max_distance(s.editor.positions(), rest), 0.01 * s.diagonal());
 }
+
+TEST(EditorSession, AnIdleWaitIsNotAFrame) {
+  Harness s;
+  ASSERT_TRUE(s.settle());
+  for (int k = 0; k < 50; ++k) s.editor.update(0.016);
+  const double busy = s.editor.frame_ms();
+  EXPECT_NEAR(busy, 16.0, 1.0);
+  EXPECT_FALSE(s.editor.idle());
+  // The window waited a quarter of a second for events: shown as idle, frame time unchanged.
+  s.editor.mark_idle_wait();
+  s.editor.update(0.25);
+  EXPECT_TRUE(s.editor.idle());
+  EXPECT_EQ(s.editor.frame_ms(), busy);
+  s.editor.update(0.016);
+  EXPECT_FALSE(s.editor.idle());
+}

@@ -155,8 +155,9 @@ double Editor::file_task_seconds() const { return task_.valid() ? clock_ - task_
 
 void Editor::update(double seconds) {
   clock_ += seconds;
-  frame_ms_ = frame_ms_ == 0.0 ? 1000.0 * seconds : 0.9 * frame_ms_ + 100.0 * seconds;
-  if (gesture_ != Gesture::None) {
+  idle_ = std::exchange(idle_wait_, false);
+  if (!idle_) frame_ms_ = frame_ms_ == 0.0 ? 1000.0 * seconds : 0.9 * frame_ms_ + 100.0 * seconds;
+  if (gesture_ != Gesture::None && !idle_) {
     ++current_gesture_.frames;
     current_gesture_.total_ms += 1000.0 * seconds;
     current_gesture_.max_ms = std::max(current_gesture_.max_ms, 1000.0 * seconds);

@@ -202,6 +202,10 @@ class Editor {
   // Frame statistics: time between frames (smoothed), and frame times during the last mouse
   // gesture (a handle drag, an orbit, a stroke...), also printed on stdout when it ends.
   double frame_ms() const { return frame_ms_; }
+  // The next update() follows a wait for events (nothing moved): its time is not a frame
+  // time, for the frame-time display nor for a gesture's statistics.
+  void mark_idle_wait() { idle_wait_ = true; }
+  bool idle() const { return idle_; }  // the last update followed such a wait
   struct GestureStats {
     std::string what;  // "drag 'top'", "orbit", ...
     int frames = 0;
@@ -281,6 +285,7 @@ class Editor {
   std::string error_popup_;
   size_t error_count_ = 0;
   double frame_ms_ = 0.0;
+  bool idle_wait_ = false, idle_ = false;
   GestureStats gesture_stats_, current_gesture_;
 };
 

@@ -433,10 +433,12 @@ int App::run() {
     const bool animate = editor_.solver_status().busy() || editor_.file_task_running() || script_ ||
                          screenshot_run_ || editor_.gesture() != Editor::Gesture::None ||
                          editor_.camera().update(0.0) || renderer_->drew_proxy();
-    if (animate)
+    if (animate) {
       glfwPollEvents();
-    else
+    } else {
       glfwWaitEventsTimeout(0.25);
+      editor_.mark_idle_wait();
+    }
     double now = glfwGetTime();
     // At most about 60 frames a second while animating (what vsync does on a real display;
     // Xvfb has none): the rest of the CPU goes to the solver.

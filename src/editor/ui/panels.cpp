@@ -576,8 +576,13 @@ void draw_status(Editor& e, UiState& ui) {
   }
   const SolverStatus& st = e.solver_status();
   char right[160];
-  std::snprintf(right, sizeof right, "%s | %s | E %.4g | %.1f ms", tool_label(e.tools.tool),
-                phase_label(st.phase), st.energy, e.frame_ms());
+  char frame[32];
+  if (e.idle())
+    std::snprintf(frame, sizeof frame, "idle");
+  else
+    std::snprintf(frame, sizeof frame, "%.1f ms", e.frame_ms());
+  std::snprintf(right, sizeof right, "%s | %s | E %.4g | %s", tool_label(e.tools.tool),
+                phase_label(st.phase), st.energy, frame);
   ImGui::SameLine(std::max(ImGui::GetCursorPosX() + 20, display.x - ImGui::CalcTextSize(right).x - 16));
   ImGui::TextDisabled("%s", right);
   ImGui::End();
