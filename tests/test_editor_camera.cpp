@@ -121,3 +121,15 @@ TEST(EditorGizmo, DragRotationFollowsTheCursor) {
   EXPECT_DOUBLE_EQ(snap_step_for(2.0), 0.1);
   EXPECT_DOUBLE_EQ(snap_step_for(500.0), 10.0);
 }
+
+TEST(EditorCamera, AxesOnScreenFollowTheView) {
+  Camera c = front_camera();  // at +z looking down -z
+  const auto a = c.axes_on_screen();
+  EXPECT_NEAR(a[0].x, 1.0, 1e-12);   // x to the right
+  EXPECT_NEAR(a[1].y, -1.0, 1e-12);  // y up (screen y grows down)
+  EXPECT_NEAR(a[2].z, -1.0, 1e-12);  // z towards the viewer
+  c.view_preset(ViewPreset::Top);
+  c.update(10.0);  // finish the animation
+  const auto top = c.axes_on_screen();
+  EXPECT_NEAR(std::abs(top[1].z), 1.0, 1e-3);  // looking along y (short of the pole)
+}

@@ -162,4 +162,15 @@ double Camera::world_per_pixel(const glm::dvec3& at) const {
   return 2.0 * h * std::tan(0.5 * fov_y_) / height_;
 }
 
+std::array<glm::dvec3, 3> Camera::axes_on_screen() const {
+  std::array<glm::dvec3, 3> axes;
+  const glm::dvec3 r = right(), u = up(), f = forward();
+  for (int k = 0; k < 3; ++k) {
+    glm::dvec3 a(0.0);
+    a[k] = 1.0;
+    axes[size_t(k)] = glm::dvec3(glm::dot(a, r), -glm::dot(a, u), glm::dot(a, f));
+  }
+  return axes;
+}
+
 }  // namespace primo::editor

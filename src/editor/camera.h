@@ -4,6 +4,7 @@
 // sphere, and view changes animate. Pixel coordinates are relative to the viewport's top-left
 // corner, y down, in framebuffer pixels.
 
+#include <array>
 #include <glm/glm.hpp>
 
 namespace primo::editor {
@@ -63,6 +64,9 @@ class Camera {
   Ray ray(const glm::dvec2& pixel) const;
   // World length of one pixel at a world point (at the point's depth).
   double world_per_pixel(const glm::dvec3& at) const;
+  // How the world's x, y and z axes appear, for the view-axis widget in the corner: screen
+  // direction (x right, y down) and depth (> 0 pointing away from the viewer) of each.
+  std::array<glm::dvec3, 3> axes_on_screen() const;
 
  private:
   CameraPose pose_;

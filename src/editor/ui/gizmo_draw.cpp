@@ -1,5 +1,7 @@
 #include "gizmo_draw.h"
 
+#include <algorithm>
+#include <array>
 #include <imgui.h>
 
 #include <cmath>
@@ -135,6 +137,23 @@ void draw_viewport_overlays(const Editor& e, ImDrawList* dl) {
     dl->AddCircle(cursor, r, col, 48, 1.5f);
   }
   draw_gizmo(e, dl, to_window);
+
+  // 3. The world axes in the bottom-left corner, the far ones first and dimmer.
+  const ImVec2 origin(float(vp.x) + 42.0f, float(vp.y + vp.height) - 42.0f);
+  const std::array<glm::dvec3, 3> axes = cam.axes_on_screen();
+  const char* names[3] = {"X", "Y", "Z"};
+  const float colors[3][3] = {{0.95f, 0.35f, 0.35f}, {0.45f, 0.85f, 0.35f}, {0.35f, 0.55f, 1.0f}};
+  int order[3] = {0, 1, 2};
+  std::sort(order, order + 3, [&](int a, int b) { return axes[size_t(a)].z > axes[size_t(b)].z; });
+  dl->AddCircleFilled(origin, 34.0f, rgba(0, 0, 0, 0.25f));
+  for (int k : order) {
+    const glm::dvec3& a = axes[size_t(k)];
+    const float alpha = a.z > 0.2 ? 0.45f : 1.0f;  // pointing away: behind the centre
+    const ImVec2 tip(origin.x + float(a.x) * 26.0f, origin.y + float(a.y) * 26.0f);
+    const ImU32 col = rgba(colors[k][0], colors[k][1], colors[k][2], alpha);
+    dl->AddLine(origin, tip, col, 2.0f);
+    dl->AddText(ImVec2(tip.x - 4.0f, tip.y - 7.0f), col, names[k]);
+  }
   dl->PopClipRect();
 }
 
