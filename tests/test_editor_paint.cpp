@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "paint.h"
 
 using namespace primo::editor;
@@ -30,4 +32,27 @@ TEST(EditorPaint, LayersAreSeparate) {
   EXPECT_FALSE(s.height_factor);
   EXPECT_EQ(factor_at(s.width_factor, 0), 1.5);
   EXPECT_EQ(factor_at(s.height_factor, 0), 1.0);
+}
+
+TEST(EditorPaint, FalloffFadesFromTheCentreToTheRim) {
+  EXPECT_EQ(falloff_weight(Falloff::Constant, 0.7), 1.0);
+  EXPECT_EQ(falloff_weight(Falloff::Linear, 0.25), 0.75);
+  EXPECT_EQ(falloff_weight(Falloff::Smooth, 0.0), 1.0);
+  EXPECT_NEAR(falloff_weight(Falloff::Smooth, 0.5), 0.5625, 1e-15);
+  for (Falloff f : {Falloff::Constant, Falloff::Linear, Falloff::Smooth})
+    EXPECT_EQ(falloff_weight(f, 1.0), 0.0) << "nothing at or beyond the rim";
+}
+
+TEST(EditorPaint, SoftDabsBlendTowardsTheValueInHundredths) {
+  FactorArray f = blend_factors(nullptr, 4, {0, 1, 2}, {1.0, 0.5, 0.0}, 0.3);
+  ASSERT_TRUE(f);
+  EXPECT_EQ((*f)[0], 0.3);   // full weight: the value exactly
+  EXPECT_EQ((*f)[1], 0.65);  // half way from 1
+  EXPECT_EQ((*f)[2], 1.0);   // no weight: untouched
+  // Dabs build up; values stay on a 0.01 grid, so a soft stroke saves as few regions.
+  for (int k = 0; k < 3; ++k) f = blend_factors(f, 4, {1}, {0.37}, 0.3);
+  EXPECT_NEAR((*f)[1], 0.3 + 0.35 * std::pow(0.63, 3), 0.01);
+  EXPECT_EQ(std::round((*f)[1] * 100) / 100, (*f)[1]);
+  // Blending everything back to 1 gives the empty layer again.
+  EXPECT_EQ(blend_factors(f, 4, {0, 1}, {1.0, 1.0}, 1.0), nullptr);
 }

@@ -435,3 +435,30 @@ TEST(EditorSession, AnIdleWaitIsNotAFrame) {
   s.editor.update(0.016);
   EXPECT_FALSE(s.editor.idle());
 }
+
+TEST(EditorSession, ASoftBrushPaintsLessTowardsItsRim) {
+  Harness s;
+  ASSERT_TRUE(s.settle());
+  s.editor.set_tool(Tool::Paint);
+  s.editor.tools.paint_layer = PaintLayer::Height;
+  s.editor.tools.paint_height = 0.2;
+  s.editor.tools.paint_strength = 0.5;
+  s.editor.tools.paint_falloff = Falloff::Smooth;
+  s.editor.tools.brush_radius = 80;
+  s.event(InputEvent::cursor(400, 300));
+  s.event(InputEvent::mouse(GLFW_MOUSE_BUTTON_LEFT, GLFW_PRESS, 0));
+  s.event(InputEvent::mouse(GLFW_MOUSE_BUTTON_LEFT, GLFW_RELEASE, 0));
+  const FactorArray& f = s.editor.document()->state.height_factor;
+  ASSERT_TRUE(f);
+  double lowest = 1.0, highest = 0.0;
+  int painted = 0;
+  for (double v : *f)
+    if (v != 1.0) {
+      ++painted;
+      lowest = std::min(lowest, v);
+      highest = std::max(highest, v);
+    }
+  EXPECT_GT(painted, 2);
+  EXPECT_GE(lowest, 0.2 + 0.5 * 0.8 - 0.01) << "strength 0.5: at most half way to 0.2";
+  EXPECT_GT(highest, lowest) << "the rim got less than the centre";
+}

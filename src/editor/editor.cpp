@@ -594,10 +594,19 @@ void Editor::brush_dab() {
                        : tools.paint_layer == PaintLayer::Height ? tools.paint_height
                                                                  : tools.paint_width;
   FactorArray& layer = layer_factors(s, tools.paint_layer);
-  bool changes = false;
-  for (int f : faces) changes = changes || factor_at(layer, f) != value;
+  // Each face's weight: the strength, faded by its centroid's distance from the cursor.
+  std::vector<double> weights(faces.size(), tools.paint_strength);
+  if (tools.paint_falloff != Falloff::Constant) {
+    const std::vector<Vec3>& points = positions();
+    for (size_t i = 0; i < faces.size(); ++i) {
+      const glm::dvec3 p = camera_.project(to_glm(face_centroid(*doc_->topology, points, faces[i])));
+      weights[i] *= falloff_weight(tools.paint_falloff, glm::length(glm::dvec2(p) - cursor_) / r);
+    }
+  }
+  FactorArray next = blend_factors(layer, doc_->n_faces(), faces, weights, value);
+  const bool changes = next ? !layer || *next != *layer : layer != nullptr;
   if (!changes) return;
-  layer = paint_factors(layer, doc_->n_faces(), faces, value);
+  layer = std::move(next);
   overlay_changed_ = true;
   live_edit();
 }

@@ -36,6 +36,8 @@ struct ToolSettings {
   PaintLayer paint_layer = PaintLayer::Height;
   double paint_height = 0.3;   // the height factor the brush paints (below 1: softer)
   double paint_width = 0.85;   // the width factor the brush paints (below 1: shrink)
+  double paint_strength = 1.0; // how far one dab moves a face towards the value (0..1]
+  Falloff paint_falloff = Falloff::Constant;  // from the brush's centre to its rim
   bool xray = false;           // selections reach hidden faces too
 };
 

@@ -1,5 +1,6 @@
 #include "paint.h"
 
+#include <cmath>
 #include <algorithm>
 #include <map>
 
@@ -10,6 +11,31 @@ FactorArray paint_factors(const FactorArray& factors, int n_faces, const std::ve
   std::vector<double> out = factors ? *factors : std::vector<double>(size_t(n_faces), 1.0);
   for (int f : faces)
     if (f >= 0 && f < n_faces) out[f] = value;
+  if (std::all_of(out.begin(), out.end(), [](double v) { return v == 1.0; })) return nullptr;
+  return std::make_shared<const std::vector<double>>(std::move(out));
+}
+
+double falloff_weight(Falloff falloff, double t) {
+  if (!(t < 1.0)) return 0.0;
+  t = std::max(t, 0.0);
+  switch (falloff) {
+    case Falloff::Constant: return 1.0;
+    case Falloff::Linear: return 1.0 - t;
+    case Falloff::Smooth: return (1.0 - t * t) * (1.0 - t * t);
+  }
+  return 1.0;
+}
+
+FactorArray blend_factors(const FactorArray& factors, int n_faces, const std::vector<int>& faces,
+                          const std::vector<double>& weights, double value) {
+  std::vector<double> out = factors ? *factors : std::vector<double>(size_t(n_faces), 1.0);
+  for (size_t i = 0; i < faces.size() && i < weights.size(); ++i) {
+    const int f = faces[i];
+    if (f < 0 || f >= n_faces || !(weights[i] > 0.0)) continue;
+    const double w = std::min(weights[i], 1.0);
+    const double blended = out[f] + w * (value - out[f]);
+    out[f] = w >= 1.0 ? value : std::round(blended * 100.0) / 100.0;
+  }
   if (std::all_of(out.begin(), out.end(), [](double v) { return v == 1.0; })) return nullptr;
   return std::make_shared<const std::vector<double>>(std::move(out));
 }

@@ -17,6 +17,17 @@ enum class PaintLayer { Height, Width };
 FactorArray paint_factors(const FactorArray& factors, int n_faces, const std::vector<int>& faces,
                           double value);
 
+// How a brush's effect fades from its centre (1) to its rim (0): Constant paints the whole disc
+// alike, Linear fades evenly, Smooth as (1 - t^2)^2 (Blender's and ZBrush's soft brush).
+enum class Falloff { Constant, Linear, Smooth };
+double falloff_weight(Falloff falloff, double distance_over_radius);
+
+// A soft dab: each face of `faces` moves from its factor towards `value` by its `weights`
+// entry (0 none, 1 all the way). Blended values are rounded to 0.01, so that a soft stroke
+// still saves as a few regions (one per distinct value) and not one per face.
+FactorArray blend_factors(const FactorArray& factors, int n_faces, const std::vector<int>& faces,
+                          const std::vector<double>& weights, double value);
+
 FactorArray& layer_factors(EditState& state, PaintLayer layer);
 const FactorArray& layer_factors(const EditState& state, PaintLayer layer);
 

@@ -218,6 +218,15 @@ void tool_section(Editor& e) {
                           t.paint_layer == PaintLayer::Height ? ImGuiSliderFlags_Logarithmic : 0);
       float r = float(t.brush_radius);
       if (ImGui::SliderFloat("Radius", &r, 2.0f, 200.0f, "%.0f px", ImGuiSliderFlags_Logarithmic)) t.brush_radius = r;
+      float strength = float(t.paint_strength);
+      if (ImGui::SliderFloat("Strength", &strength, 0.05f, 1.0f, "%.2f")) t.paint_strength = strength;
+      help_marker("How far one dab moves the faces towards the value: 1 sets it at once, lower "
+                  "builds it up over repeated strokes.");
+      int falloff = int(t.paint_falloff);
+      const char* falloffs[] = {"Constant", "Linear", "Smooth"};
+      if (ImGui::Combo("Falloff", &falloff, falloffs, 3)) t.paint_falloff = Falloff(falloff);
+      help_marker("How the brush fades from its centre to its rim: Smooth blends painted "
+                  "regions softly into their surroundings.");
       ImGui::TextDisabled("Ctrl + drag erases (back to x1)");
       if (doc && ImGui::Button("Clear this layer")) {
         layer_factors(doc->state, t.paint_layer) = nullptr;
