@@ -462,3 +462,37 @@ TEST(EditorSession, ASoftBrushPaintsLessTowardsItsRim) {
   EXPECT_GE(lowest, 0.2 + 0.5 * 0.8 - 0.01) << "strength 0.5: at most half way to 0.2";
   EXPECT_GT(highest, lowest) << "the rim got less than the centre";
 }
+
+TEST(EditorSession, ExportingWhileSolvingSaysSoInTheMessageThatStays) {
+  Editor e;
+  e.set_viewport({0, 0, 800, 600, 1.0});
+  auto doc = make_document(make_cylinder(0.25, 2.0, 60, 80, FaceShape::Quads), "");
+  const MeshTopology& t = *doc->topology;
+  std::vector<int> bottom, top;
+  for (int f = 0; f < t.n_faces; ++f) {
+    const double y = t.rest_geometry.centroid[f].y();
+    if (y < 0.05) bottom.push_back(f);
+    if (y > 1.95) top.push_back(f);
+  }
+  add_handle(doc->state, t, t.rest_points, bottom, HandleMode::Fixed);
+  const int h = add_handle(doc->state, t, t.rest_points, top, HandleMode::Pose);
+  doc->state.handles[size_t(h)].pose.rotation = Eigen::Quaterniond(Eigen::AngleAxisd(2.5, Vec3::UnitY()));
+  doc->state.prisms.height = 1.0;  // the thin layer: slow to converge
+  doc->state.prisms.height_unit = HeightUnit::MeanEdgeLength;
+  e.adopt(std::move(doc));
+  for (int k = 0; k < 200 && e.solver_status().phase != SolverPhase::Solving; ++k) {
+    e.update(0.016);
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  ASSERT_TRUE(e.solver_status().busy());
+  const std::string out = primo::test::temp_dir() + "/shown.obj";
+  e.save_mesh(out);
+  for (int k = 0; k < 500 && e.file_task_running(); ++k) {
+    e.update(0.016);
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  ASSERT_FALSE(e.messages().empty());
+  const std::string last = e.messages().back().text;
+  EXPECT_NE(last.find("Saved the deformed mesh"), std::string::npos) << last;
+  EXPECT_NE(last.find("not converged yet"), std::string::npos) << last;
+}

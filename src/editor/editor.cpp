@@ -107,15 +107,16 @@ void Editor::save_mesh(const std::string& path) {
   auto mesh = std::make_shared<Mesh>(*doc_->mesh);
   const std::vector<Vec3>& points = positions();
   for (auto v : mesh->vertices()) mesh->set_point(v, points[v.idx()]);
-  if (status_.busy())
-    info("Note: the solver is still converging; saving the shape shown now");
-  else if (status_.phase == SolverPhase::Stopped)
-    info("Note: the solver stopped at its iteration limit before converging");
+  // The caveat goes into the message that stays, not one the "Saved" line replaces at once.
+  const std::string caveat =
+      status_.busy() ? " (not converged yet: the shape shown when you saved)"
+      : status_.phase == SolverPhase::Stopped ? " (the solve was stopped before converging)"
+                                              : "";
   task_label_ = "Saving " + file_name(path);
   task_started_ = clock_;
-  task_ = std::async(std::launch::async, [this, mesh, path]() -> std::function<void()> {
+  task_ = std::async(std::launch::async, [this, mesh, path, caveat]() -> std::function<void()> {
     primo::save_mesh(*mesh, path);
-    return [this, path] { info("Saved the deformed mesh to " + path); };
+    return [this, path, caveat] { info("Saved the deformed mesh to " + path + caveat); };
   });
 }
 
