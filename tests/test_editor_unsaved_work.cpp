@@ -171,3 +171,38 @@ TEST(EditorUnsavedWork, RecentFilesAreNewestFirstUniqueAndBounded) {
   EXPECT_EQ(fs::path(entries[0]).filename(), "pose.json");
   EXPECT_EQ(fs::path(entries[1]).filename(), "bar.obj");
 }
+
+TEST(EditorPreferences, AreKeptBetweenRunsAndAppliedAtStart) {
+  const std::string file = preferences_path();  // in this test process's own config folder
+  Preferences p;
+  p.wireframe = true;
+  p.brush_radius = 55.0;
+  p.paint_falloff = Falloff::Smooth;
+  p.autosave_minutes = 5.0;
+  p.tolerance = 1e-6;
+  ASSERT_TRUE(save_preferences(p));
+  const Preferences back = load_preferences();
+  EXPECT_TRUE(back.wireframe);
+  EXPECT_EQ(back.brush_radius, 55.0);
+  EXPECT_EQ(back.paint_falloff, Falloff::Smooth);
+  EXPECT_EQ(back.tolerance, 1e-6);
+  // A new editor starts with them; a mesh opened without a scenario settles to that tolerance.
+  Editor e;
+  EXPECT_TRUE(e.display.wireframe);
+  EXPECT_EQ(e.tools.brush_radius, 55.0);
+  EXPECT_EQ(e.tools.paint_falloff, Falloff::Smooth);
+  const std::string dir = test::temp_dir();
+  save_mesh(make_bar(0.2, 1.0, 2, 6), dir + "/bar.obj");
+  e.open(dir + "/bar.obj");
+  ASSERT_TRUE(settle(e));
+  EXPECT_EQ(e.document()->solver.tolerance, 1e-6);
+  // Broken or out-of-range files give defaults or clamped values, never a failure.
+  test::write_text(file, R"({"brush_radius": 1e9, "smooth": "yes", "tolerance": -1})");
+  const Preferences odd = load_preferences();
+  EXPECT_EQ(odd.brush_radius, 200.0);
+  EXPECT_TRUE(odd.smooth);
+  EXPECT_EQ(odd.tolerance, 1e-14);
+  test::write_text(file, "{broken");
+  EXPECT_EQ(load_preferences().brush_radius, Preferences{}.brush_radius);
+  fs::remove(file);
+}

@@ -45,6 +45,21 @@ Editor::Editor(std::function<void()> wake_ui)
   // The editor settles until converged (Stop ends it early); solver.max_iterations is for
   // batch commands (docs/editor.md).
   worker_->set_iteration_limit(false);
+  preferences_ = load_preferences();
+  apply_preferences();
+}
+
+void Editor::apply_preferences() {
+  const Preferences& p = preferences_;
+  display.smooth = p.smooth;
+  display.wireframe = p.wireframe;
+  display.prisms = p.prisms;
+  display.heat_map = p.heat_map;
+  display.paint_overlay = p.paint_overlay;
+  tools.brush_radius = p.brush_radius;
+  tools.paint_strength = p.paint_strength;
+  tools.paint_falloff = p.paint_falloff;
+  autosave_every_ = 60.0 * p.autosave_minutes;
 }
 
 Editor::~Editor() {
@@ -67,6 +82,8 @@ void Editor::open_file(const std::string& path, bool recovered) {
         doc->scenario_path.clear();
         doc->saved_state = initial_edit_state(doc->n_faces());
       }
+      // A mesh without a scenario settles to the user's tolerance.
+      if (!recovered && doc->scenario_path.empty()) doc->solver.tolerance = preferences_.tolerance;
       apply_document(std::make_unique<Document>(std::move(*doc)));
       if (!recovered) recent_.add(path);
       last_autosave_ = clock_;

@@ -18,6 +18,7 @@
 #include "gizmo.h"
 #include "input.h"
 #include "paint.h"
+#include "preferences.h"
 #include "recent_files.h"
 #include "screen_region.h"
 #include "session_control.h"
@@ -113,6 +114,10 @@ class Editor {
   // Opens an autosaved scenario as unsaved work with no file of its own (Save asks where).
   void recover(const std::string& autosave_file);
   RecentFiles& recent_files() { return recent_; }
+  // The user's defaults (preferences.h), read when the editor starts. apply_preferences puts
+  // them into the display, brush and autosave settings now.
+  Preferences& preferences() { return preferences_; }
+  void apply_preferences();
 
   // --- Per frame ------------------------------------------------------------------------
   // Finishes file tasks, sends edits to the solver, picks up its newest result, animates the
@@ -245,6 +250,7 @@ class Editor {
   std::optional<DiscardQuestion> discard_question_;
   double autosave_every_ = 120.0, last_autosave_ = 0.0;
   RecentFiles recent_;
+  Preferences preferences_;
 
   // Solver bookkeeping.
   EditState sent_;

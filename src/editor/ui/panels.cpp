@@ -525,6 +525,7 @@ void draw_menu(Editor& e, UiState& ui) {
     const std::string redo = doc && doc->history.can_redo() ? "Redo " + doc->history.redo_label() : "Redo";
     if (ImGui::MenuItem(undo.c_str(), "Ctrl+Z", false, doc && doc->history.can_undo())) e.undo();
     if (ImGui::MenuItem(redo.c_str(), "Ctrl+Shift+Z", false, doc && doc->history.can_redo())) e.redo();
+    if (ImGui::MenuItem("Preferences...")) ui.show_preferences = true;
     ImGui::Separator();
     if (ImGui::MenuItem("Select all", "A")) e.select_all();
     if (ImGui::MenuItem("Select none", "Alt+A")) e.clear_selection();
@@ -766,6 +767,55 @@ void draw_discard_question(Editor& e, UiState& ui) {
   ImGui::EndPopup();
 }
 
+// Edit > Preferences: the defaults a new run starts with (preferences.h).
+void draw_preferences(Editor& e, UiState& ui) {
+  if (!ui.show_preferences) return;
+  ImGui::SetNextWindowSize(ImVec2(420, 0), ImGuiCond_Appearing);
+  if (!ImGui::Begin("Preferences", &ui.show_preferences, ImGuiWindowFlags_NoCollapse)) {
+    ImGui::End();
+    return;
+  }
+  Preferences& p = e.preferences();
+  ImGui::TextDisabled("Display");
+  ImGui::Checkbox("Smooth shading", &p.smooth);
+  ImGui::SameLine();
+  ImGui::Checkbox("Wireframe", &p.wireframe);
+  ImGui::Checkbox("Prisms", &p.prisms);
+  ImGui::SameLine();
+  ImGui::Checkbox("Energy heat map", &p.heat_map);
+  ImGui::SameLine();
+  ImGui::Checkbox("Paint colours", &p.paint_overlay);
+  ImGui::Separator();
+  ImGui::TextDisabled("Brushes");
+  float radius = float(p.brush_radius), strength = float(p.paint_strength);
+  if (ImGui::SliderFloat("Radius", &radius, 2.0f, 200.0f, "%.0f px", ImGuiSliderFlags_Logarithmic))
+    p.brush_radius = radius;
+  if (ImGui::SliderFloat("Paint strength", &strength, 0.05f, 1.0f, "%.2f")) p.paint_strength = strength;
+  int falloff = int(p.paint_falloff);
+  const char* falloffs[] = {"Constant", "Linear", "Smooth"};
+  if (ImGui::Combo("Paint falloff", &falloff, falloffs, 3)) p.paint_falloff = Falloff(falloff);
+  ImGui::Separator();
+  ImGui::TextDisabled("Work");
+  float minutes = float(p.autosave_minutes);
+  if (ImGui::SliderFloat("Autosave every", &minutes, 0.0f, 30.0f, minutes == 0 ? "never" : "%.1f min"))
+    p.autosave_minutes = minutes;
+  double lo = 1e-12, hi = 1e-3;
+  ImGui::SliderScalar("Tolerance", ImGuiDataType_Double, &p.tolerance, &lo, &hi, "%.0e",
+                      ImGuiSliderFlags_Logarithmic);
+  help_marker("The relative energy change at which the solver has settled, for meshes opened "
+              "without a scenario (a scenario keeps its own solver.tolerance).");
+  if (ImGui::Button("Use now")) e.apply_preferences();
+  ImGui::SameLine();
+  if (ImGui::Button("Save as defaults")) {
+    e.apply_preferences();
+    if (save_preferences(p))
+      e.info("Saved the preferences to " + preferences_path());
+    else
+      e.error("Could not write " + preferences_path());
+  }
+  ImGui::End();
+}
+
 // Autosaved work left by a run that did not end cleanly, offered once at the start.
 void draw_recovery(Editor& e, UiState& ui) {
   if (!ui.recovery_checked) {
@@ -845,6 +895,7 @@ void draw_ui(Editor& e, UiState& ui) {
   draw_help(ui);
   draw_error_popup(e, ui);
   draw_recovery(e, ui);
+  draw_preferences(e, ui);
   draw_discard_question(e, ui);
   draw_file_dialog(e, ui);
 }

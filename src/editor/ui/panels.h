@@ -16,6 +16,7 @@ namespace primo::editor {
 struct UiState {
   bool show_panels = true;  // false: the viewport fills the window (clean screenshots)
   bool show_help = false;
+  bool show_preferences = false;
   FileDialog dialog;
   enum class Purpose {
     None, Open, SaveMesh, SaveScenario, Screenshot,
