@@ -496,3 +496,21 @@ TEST(EditorSession, ExportingWhileSolvingSaysSoInTheMessageThatStays) {
   EXPECT_NE(last.find("Saved the deformed mesh"), std::string::npos) << last;
   EXPECT_NE(last.find("not converged yet"), std::string::npos) << last;
 }
+
+TEST(EditorSession, StatusMessagesGoStaleAfterAToolChangeOrTenSeconds) {
+  Harness s;
+  ASSERT_TRUE(s.settle());
+  s.editor.info("Saved the scenario to x.json");
+  ASSERT_NE(s.editor.current_message(), nullptr);
+  EXPECT_EQ(s.editor.current_message()->text, "Saved the scenario to x.json");
+  s.editor.set_tool(Tool::Paint);  // the message was about something else
+  EXPECT_EQ(s.editor.current_message(), nullptr);
+  s.editor.info("Painted");
+  ASSERT_NE(s.editor.current_message(), nullptr);
+  for (int k = 0; k < 11; ++k) s.editor.update(1.0);
+  EXPECT_EQ(s.editor.current_message(), nullptr) << "older than 10 s";
+  s.editor.error("Could not write");
+  for (int k = 0; k < 11; ++k) s.editor.update(1.0);
+  ASSERT_NE(s.editor.current_message(), nullptr) << "errors stay longer";
+  EXPECT_TRUE(s.editor.current_message()->error);
+}

@@ -907,12 +907,14 @@ void Editor::set_handle_mode(int index, HandleMode mode) {
   if (doc_->state.handles[index].mode == mode) return;
   primo::editor::set_handle_mode(doc_->state, index, mode);
   commit("'" + doc_->state.handles[index].name + "' to " + mode_label(mode));
+  stale_up_to_ = message_serial_;
 }
 
 void Editor::set_tool(Tool tool) {
   if (gesture_ != Gesture::None) cancel_gesture();
   tools.tool = tool;
   overlay_changed_ = true;
+  stale_up_to_ = message_serial_;
 }
 
 void Editor::frame_all() {
@@ -996,13 +998,21 @@ bool Editor::handle_window_position(const std::string& name, double& x, double& 
 // --- Messages ---------------------------------------------------------------------------
 
 void Editor::info(const std::string& text) {
-  messages_.push_back({text, false});
+  messages_.push_back({text, false, clock_, ++message_serial_});
   if (messages_.size() > 200) messages_.erase(messages_.begin());
   std::printf("[primo edit] %s\n", text.c_str());
 }
 
+const Editor::Message* Editor::current_message() const {
+  if (messages_.empty()) return nullptr;
+  const Message& m = messages_.back();
+  const double fresh = m.error ? 30.0 : 10.0;
+  if (clock_ - m.time > fresh || m.serial <= stale_up_to_) return nullptr;
+  return &m;
+}
+
 void Editor::error(const std::string& text) {
-  messages_.push_back({text, true});
+  messages_.push_back({text, true, clock_, ++message_serial_});
   if (messages_.size() > 200) messages_.erase(messages_.begin());
   error_popup_ = text;
   ++error_count_;

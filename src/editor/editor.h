@@ -70,6 +70,8 @@ class Editor {
   struct Message {
     std::string text;
     bool error = false;
+    double time = 0.0;  // editor clock when it was said
+    long serial = 0;    // counts messages, for what came after a tool or mode change
   };
   enum class Gesture {
     None, Orbit, Pan, Zoom, SelectBrush, SelectBox, SelectLasso, DragHandle, Gizmo, Paint
@@ -184,6 +186,9 @@ class Editor {
   // Deformed vertex positions shown now (rest positions before the first result).
   const std::vector<Vec3>& positions() const;
   const std::vector<Message>& messages() const { return messages_; }
+  // What the status bar says on its left: the newest message while it is fresh (10 s, an
+  // error 30 s) and no tool or handle mode changed since; else "" (the bar shows its hint).
+  const Message* current_message() const;
   // Errors reported so far (a script or screenshot run fails when it grows).
   size_t error_count() const { return error_count_; }
   // The newest error not yet shown in a popup ("" when none).
@@ -288,6 +293,8 @@ class Editor {
   double last_paint_sync_ = 0.0;
   int held_mods_ = 0;
   bool quit_requested_ = false;
+  long message_serial_ = 0;
+  long stale_up_to_ = 0;  // messages up to this serial predate the last tool or mode change
 
   std::vector<Message> messages_;
   std::string error_popup_;

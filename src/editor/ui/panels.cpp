@@ -575,14 +575,13 @@ void draw_status(Editor& e, UiState& ui) {
   ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(8, 4));
   ImGui::Begin("##status", nullptr, ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove |
                                         ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoBringToFrontOnFocus);
-  if (!e.messages().empty()) {
-    const Editor::Message& m = e.messages().back();
-    if (m.error)
-      ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.4f, 1), "%s", m.text.c_str());
+  if (const Editor::Message* m = e.current_message()) {
+    if (m->error)
+      ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.4f, 1), "%s", m->text.c_str());
     else
-      ImGui::TextUnformatted(m.text.c_str());
+      ImGui::TextUnformatted(m->text.c_str());
   } else {
-    ImGui::TextDisabled("F1: controls");
+    ImGui::TextDisabled("%s - F1: controls", tool_label(e.tools.tool));
   }
   const SolverStatus& st = e.solver_status();
   char right[160];
