@@ -661,7 +661,7 @@ void draw_help(UiState& ui) {
     for (const Row& r : rows) {
       ImGui::TableNextRow();
       ImGui::TableNextColumn();
-      ImGui::TextUnformatted(r.keys);
+      ImGui::TextWrapped("%s", r.keys);  // long key lists wrap instead of being cut off
       ImGui::TableNextColumn();
       ImGui::TextWrapped("%s", r.what);
     }
