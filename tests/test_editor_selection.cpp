@@ -8,6 +8,7 @@
 
 #include "mesh_topology.h"
 #include "primo/mesh_generators.h"
+#include "primo/mesh_io.h"
 #include "screen_region.h"
 #include "selection.h"
 
@@ -93,4 +94,32 @@ TEST(EditorSelection, FootprintTakesSeenFacesAndVisibleSmallOnes) {
   // Face 7 is not taken where the shape misses its pixels.
   const ScreenShape right = ScreenShape::box({2.2, 0}, {4, 4});
   EXPECT_EQ(faces_in_shape(right, image, centroids, false, 0.1), (std::vector<int>{5}));
+}
+
+TEST(EditorSelection, LinkedFacesStopAtGapsAndSharpEdges) {
+  // A closed box-shaped bar: its four long sides meet at 90-degree edges.
+  const Mesh bar = make_bar(0.2, 1.0, 2, 6);
+  const MeshTopology t = build_topology(bar);
+  FaceMask mask(size_t(t.n_faces), 0);
+  mask[0] = 1;
+  FaceMask by_angle = mask;
+  select_linked(by_angle, t, 30.0);
+  // Exactly the faces whose normal is the first face's: one flat side (or end cap).
+  const Vec3 n0 = t.rest_geometry.normal[0];
+  for (int f = 0; f < t.n_faces; ++f)
+    EXPECT_EQ(by_angle[f] != 0, t.rest_geometry.normal[f].dot(n0) > 0.999) << "face " << f;
+  EXPECT_GT(count_selected(by_angle), 1);
+  FaceMask all = mask;
+  select_linked(all, t);  // one connected piece: everything
+  EXPECT_EQ(count_selected(all), t.n_faces);
+  // Two separate pieces: linked stays in the first.
+  PolygonSoup soup;
+  soup.points = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(0, 1, 0), Vec3(2, 0, 0),
+                 Vec3(2, 1, 0), Vec3(5, 0, 0), Vec3(6, 0, 0), Vec3(6, 1, 0)};
+  soup.faces = {{0, 1, 2, 3}, {1, 4, 5, 2}, {6, 7, 8}};
+  const MeshTopology two = build_topology(mesh_from_soup(soup, "two pieces"));
+  FaceMask m(3, 0);
+  m[0] = 1;
+  select_linked(m, two);
+  EXPECT_EQ(m, (FaceMask{1, 1, 0}));
 }

@@ -730,6 +730,7 @@ void Editor::on_key(const InputEvent& e) {
     case GLFW_KEY_C:
     case GLFW_KEY_B:
     case GLFW_KEY_L:
+      if (e.key == GLFW_KEY_L && ctrl) return select_linked(shift);  // Blender's Ctrl+L
       if (!plain) return;
       tools.shape = e.key == GLFW_KEY_C   ? SelectShape::Brush
                     : e.key == GLFW_KEY_B ? SelectShape::Box
@@ -848,6 +849,14 @@ void Editor::grow_selection() {
   FaceMask m = *doc_->state.selection;
   primo::editor::grow_selection(m, *doc_->topology);
   set_selection(m, "Grow selection");
+}
+
+void Editor::select_linked(bool by_angle) {
+  if (!doc_) return;
+  FaceMask m = *doc_->state.selection;
+  if (count_selected(m) == 0) return info("Select a face first: Select Linked grows from it");
+  primo::editor::select_linked(m, *doc_->topology, by_angle ? tools.linked_angle_deg : 180.0);
+  set_selection(m, by_angle ? "Select linked by angle" : "Select linked");
 }
 
 void Editor::shrink_selection() {

@@ -40,6 +40,7 @@ struct ToolSettings {
   double paint_strength = 1.0; // how far one dab moves a face towards the value (0..1]
   Falloff paint_falloff = Falloff::Constant;  // from the brush's centre to its rim
   bool xray = false;           // selections reach hidden faces too
+  double linked_angle_deg = 30.0;  // select linked by angle stops at sharper edges
 };
 
 struct DisplaySettings {
@@ -148,6 +149,9 @@ class Editor {
   void clear_selection();
   void invert_selection();
   void grow_selection();
+  // The connected piece around the selection (Ctrl+L), or up to edges sharper than
+  // tools.linked_angle_deg (Ctrl+Shift+L).
+  void select_linked(bool by_angle);
   void shrink_selection();
   void make_handle(HandleMode mode);  // from the selection
   void delete_handle(int index);

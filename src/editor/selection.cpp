@@ -1,6 +1,7 @@
 #include "selection.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace primo::editor {
 
@@ -38,6 +39,32 @@ void shrink_selection(FaceMask& mask, const MeshTopology& topology) {
   const FaceMask near_unselected = touching(mask, topology, 0);
   for (size_t f = 0; f < mask.size(); ++f)
     if (near_unselected[f]) mask[f] = 0;
+}
+
+void select_linked(FaceMask& mask, const MeshTopology& t, double max_angle_deg) {
+  const double min_cos = std::cos(std::min(max_angle_deg, 180.0) * M_PI / 180.0) - 1e-12;
+  std::vector<int> queue;
+  for (int f = 0; f < t.n_faces; ++f)
+    if (mask[f]) queue.push_back(f);
+  while (!queue.empty()) {
+    const int f = queue.back();
+    queue.pop_back();
+    const int n = t.degree(f);
+    for (int k = 0; k < n; ++k) {
+      // The faces across edge (a, b): around a, the ones that also have b.
+      const int a = t.face_vertices[t.face_begin[f] + k];
+      const int b = t.face_vertices[t.face_begin[f] + (k + 1) % n];
+      for (int i = t.vertex_face_begin[a]; i < t.vertex_face_begin[a + 1]; ++i) {
+        const int g = t.vertex_faces[i];
+        if (mask[g]) continue;
+        const auto begin = t.face_vertices.begin() + t.face_begin[g];
+        if (std::find(begin, begin + t.degree(g), b) == begin + t.degree(g)) continue;
+        if (t.rest_geometry.normal[f].dot(t.rest_geometry.normal[g]) < min_cos) continue;
+        mask[g] = 1;
+        queue.push_back(g);
+      }
+    }
+  }
 }
 
 void invert_selection(FaceMask& mask) {

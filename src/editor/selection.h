@@ -23,6 +23,10 @@ void apply_selection(FaceMask& mask, const std::vector<int>& faces, SelectOp op)
 void grow_selection(FaceMask& mask, const MeshTopology& topology);
 // Removes every selected face that shares a vertex with an unselected face.
 void shrink_selection(FaceMask& mask, const MeshTopology& topology);
+// Adds every face reachable from the selection across shared edges whose two faces' rest
+// normals differ by at most `max_angle_deg` (180: the whole connected piece, as Blender's
+// Select Linked; 30: up to sharp edges, as "by angle").
+void select_linked(FaceMask& mask, const MeshTopology& topology, double max_angle_deg = 180.0);
 void invert_selection(FaceMask& mask);
 void clear_selection(FaceMask& mask);
 void select_all(FaceMask& mask);

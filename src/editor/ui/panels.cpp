@@ -152,6 +152,13 @@ void selection_buttons(Editor& e) {
   ImGui::SameLine();
   if (ImGui::Button("Shrink", ImVec2(w2, 0))) e.shrink_selection();
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("Remove the selection's border faces (Ctrl+-)");
+  if (ImGui::Button("Linked", ImVec2(w2, 0))) e.select_linked(false);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Add the whole connected piece (Ctrl+L)");
+  ImGui::SameLine();
+  if (ImGui::Button("Linked by angle", ImVec2(w2, 0))) e.select_linked(true);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("Grow up to edges sharper than %.0f degrees (Ctrl+Shift+L)",
+                      e.tools.linked_angle_deg);
 }
 
 void tool_section(Editor& e) {
@@ -688,6 +695,7 @@ void draw_help(UiState& ui) {
   ImGui::TextDisabled("Selection and handles");
   table("sel", {{"A / Alt + A / Ctrl + I", "select all / none / invert"},
                 {"Ctrl + = / Ctrl + -", "grow / shrink selection"},
+                {"Ctrl + L / Ctrl + Shift + L", "select linked / linked up to sharp edges"},
                 {"Ctrl + G", "handle from selection (position + orientation)"},
                 {"Ctrl + Shift + G", "fixed region from selection"},
                 {"Ctrl + Alt + G", "spring from selection"},
