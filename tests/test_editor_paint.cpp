@@ -4,7 +4,9 @@
 
 #include <cmath>
 
+#include "mesh_topology.h"
 #include "paint.h"
+#include "primo/mesh_generators.h"
 
 using namespace primo::editor;
 
@@ -55,4 +57,17 @@ TEST(EditorPaint, SoftDabsBlendTowardsTheValueInHundredths) {
   EXPECT_EQ(std::round((*f)[1] * 100) / 100, (*f)[1]);
   // Blending everything back to 1 gives the empty layer again.
   EXPECT_EQ(blend_factors(f, 4, {0, 1}, {1.0, 1.0}, 1.0), nullptr);
+}
+
+TEST(EditorPaint, SmoothingSoftensThePaintedEdge) {
+  const primo::Mesh grid = primo::make_grid(1.0, 1.0, 5, 5, primo::FaceShape::Quads);
+  const MeshTopology t = build_topology(grid);
+  const int centre = 12;  // the middle quad of 5 x 5
+  const FactorArray painted = paint_factors(nullptr, t.n_faces, {centre}, 0.1);
+  const FactorArray smoothed = smooth_factors(painted, t);
+  ASSERT_TRUE(smoothed);
+  EXPECT_NEAR((*smoothed)[centre], (0.1 + 8.0) / 9.0, 0.005);  // itself and 8 neighbours
+  EXPECT_NEAR((*smoothed)[centre + 1], (0.1 + 8.0) / 9.0, 0.005);  // one painted neighbour of 9
+  EXPECT_EQ((*smoothed)[0], 1.0);  // far from the paint
+  EXPECT_EQ(smooth_factors(nullptr, t), nullptr);
 }

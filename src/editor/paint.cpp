@@ -40,6 +40,30 @@ FactorArray blend_factors(const FactorArray& factors, int n_faces, const std::ve
   return std::make_shared<const std::vector<double>>(std::move(out));
 }
 
+FactorArray smooth_factors(const FactorArray& factors, const MeshTopology& t) {
+  if (!factors) return nullptr;
+  const std::vector<double>& in = *factors;
+  std::vector<double> out(in.size(), 1.0);
+  std::vector<int> seen(in.size(), -1);
+  for (int f = 0; f < t.n_faces; ++f) {
+    double sum = 0.0;
+    int n = 0;
+    for (int k = t.face_begin[f]; k < t.face_begin[f + 1]; ++k) {
+      const int v = t.face_vertices[k];
+      for (int i = t.vertex_face_begin[v]; i < t.vertex_face_begin[v + 1]; ++i) {
+        const int g = t.vertex_faces[i];
+        if (seen[g] == f) continue;  // a neighbour sharing two vertices counts once
+        seen[g] = f;
+        sum += in[g];
+        ++n;
+      }
+    }
+    out[f] = n > 0 ? std::round(sum / n * 100.0) / 100.0 : in[f];
+  }
+  if (std::all_of(out.begin(), out.end(), [](double v) { return v == 1.0; })) return nullptr;
+  return std::make_shared<const std::vector<double>>(std::move(out));
+}
+
 FactorArray& layer_factors(EditState& state, PaintLayer layer) {
   return layer == PaintLayer::Height ? state.height_factor : state.width_factor;
 }

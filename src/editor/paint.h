@@ -28,6 +28,11 @@ double falloff_weight(Falloff falloff, double distance_over_radius);
 FactorArray blend_factors(const FactorArray& factors, int n_faces, const std::vector<int>& faces,
                           const std::vector<double>& weights, double value);
 
+// One pass of smoothing: every face takes the mean of its own factor and those of the faces
+// sharing a vertex with it (rounded to 0.01, as soft dabs are), which softens the edges of a
+// painted region.
+FactorArray smooth_factors(const FactorArray& factors, const MeshTopology& topology);
+
 FactorArray& layer_factors(EditState& state, PaintLayer layer);
 const FactorArray& layer_factors(const EditState& state, PaintLayer layer);
 

@@ -235,6 +235,13 @@ void tool_section(Editor& e) {
       help_marker("How the brush fades from its centre to its rim: Smooth blends painted "
                   "regions softly into their surroundings.");
       ImGui::TextDisabled("Ctrl + drag erases (back to x1)");
+      if (doc && ImGui::Button("Smooth this layer")) {
+        layer_factors(doc->state, t.paint_layer) =
+            smooth_factors(layer_factors(doc->state, t.paint_layer), *doc->topology);
+        e.commit(t.paint_layer == PaintLayer::Height ? "Smooth stiffness" : "Smooth width");
+      }
+      if (ImGui::IsItemHovered()) ImGui::SetTooltip("Soften the edges of the painted regions (once per click)");
+      ImGui::SameLine();
       if (doc && ImGui::Button("Clear this layer")) {
         layer_factors(doc->state, t.paint_layer) = nullptr;
         e.commit(t.paint_layer == PaintLayer::Height ? "Clear stiffness" : "Clear width");
