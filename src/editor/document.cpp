@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <climits>
 
 #include "primo/mesh_io.h"
 #include "scenario_bridge.h"
@@ -24,10 +25,9 @@ constexpr int kProxyTriangles = 30000;
 std::unique_ptr<Document> make_document(Mesh mesh, std::string mesh_path) {
   auto doc = std::make_unique<Document>();
   doc->topology = std::make_shared<const MeshTopology>(build_topology(mesh));
-  doc->proxy = std::make_shared<const ProxyTriangles>(
-      int(doc->topology->triangle_face.size()) > 2 * kProxyTriangles
-          ? cluster_triangles(*doc->topology, kProxyTriangles)
-          : ProxyTriangles{});
+  doc->proxy = std::make_shared<ProxyBuild>(
+      doc->topology,
+      int(doc->topology->triangle_face.size()) > 2 * kProxyTriangles ? kProxyTriangles : INT_MAX);
   doc->mesh = std::make_shared<const Mesh>(std::move(mesh));
   doc->mesh_path = std::move(mesh_path);
   doc->state = initial_edit_state(doc->n_faces());

@@ -16,8 +16,9 @@ namespace primo::editor {
 struct Document {
   std::shared_ptr<const Mesh> mesh;
   std::shared_ptr<const MeshTopology> topology;
-  // Drawn instead of the full mesh while the camera moves (empty for small meshes).
-  std::shared_ptr<const ProxyTriangles> proxy;
+  // Drawn instead of the full mesh while the camera moves (empty for small meshes), built in
+  // the background.
+  std::shared_ptr<ProxyBuild> proxy;
   std::string mesh_path;      // the mesh file
   std::string scenario_path;  // the scenario it was opened from or last saved to ("" if none)
   SolverSpec solver;          // max_iterations / tolerance / method of a settle and of exports

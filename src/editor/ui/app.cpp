@@ -138,6 +138,7 @@ class App : public ScriptHost {
   bool buttons_[3] = {false, false, false};
   bool just_pressed_[3] = {false, false, false};
   const MeshTopology* shown_topology_ = nullptr;
+  const ProxyTriangles* shown_proxy_ = nullptr;  // null until the document's proxy is built
   int settled_frames_ = 0;
   bool screenshot_run_ = false;
   double start_ = 0.0;
@@ -250,8 +251,15 @@ void App::sync_renderer() {
   const Document* doc = editor_.document();
   if (!doc) return;
   if (shown_topology_ != doc->topology.get()) {
-    renderer_->set_topology(*doc->topology, *doc->proxy);
+    renderer_->set_topology(*doc->topology);
     shown_topology_ = doc->topology.get();
+    shown_proxy_ = nullptr;
+  }
+  if (!shown_proxy_) {
+    if (const ProxyTriangles* proxy = doc->proxy->ready()) {
+      renderer_->set_proxy(*proxy);
+      shown_proxy_ = proxy;
+    }
   }
   if (editor_.take_geometry_changed()) {
     if (const auto g = editor_.geometry()) {

@@ -75,7 +75,7 @@ MeshRenderer::~MeshRenderer() {
   glDeleteFramebuffers(GLsizei(std::size(framebuffers)), framebuffers);
 }
 
-void MeshRenderer::set_topology(const MeshTopology& t, const ProxyTriangles& proxy) {
+void MeshRenderer::set_proxy(const ProxyTriangles& proxy) {
   glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, proxy_ebo_);
   glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(proxy.triangles.size() * sizeof(unsigned)),
                proxy.triangles.data(), GL_STATIC_DRAW);
@@ -85,7 +85,10 @@ void MeshRenderer::set_topology(const MeshTopology& t, const ProxyTriangles& pro
   glBindTexture(GL_TEXTURE_BUFFER, proxy_face_texture_);
   glTexBuffer(GL_TEXTURE_BUFFER, GL_R32I, proxy_face_buffer_);
   proxy_count_ = GLsizei(proxy.triangle_face.size());
+}
 
+void MeshRenderer::set_topology(const MeshTopology& t) {
+  set_proxy(ProxyTriangles{});
   glBindVertexArray(vao_);
   glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, triangle_ebo_);
   glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(t.triangles.size() * sizeof(unsigned)),

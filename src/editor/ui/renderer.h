@@ -5,7 +5,7 @@
 // shown. The scene is drawn into an offscreen target (multisampled when asked) and copied to
 // the window; it is drawn again only when the camera, the geometry, the colours or the display
 // settings changed, so frames where only the panels change cost a copy. While the camera
-// moves, a big mesh is drawn through its proxy (vertex clustering). The pick pass (face id and
+// moves, a big mesh is drawn through its proxy (a decimated stand-in). The pick pass (face id and
 // eye depth per pixel) is rendered on demand, only when the geometry or the camera changed
 // since the last one.
 
@@ -34,7 +34,9 @@ class MeshRenderer : public Picker {
 
   // The camera pick passes use (the editor's).
   void set_camera(const Camera* camera) { camera_ = camera; }
-  void set_topology(const MeshTopology& topology, const ProxyTriangles& proxy);
+  // A new mesh: drawn in full until set_proxy gives it a stand-in.
+  void set_topology(const MeshTopology& topology);
+  void set_proxy(const ProxyTriangles& proxy);
   void set_geometry(const std::vector<float>& positions, const std::vector<float>& normals);
   void set_prism_corners(const std::vector<float>& corners);  // empty: none to show
   void set_face_colors(const std::vector<std::uint32_t>& colors);
