@@ -14,6 +14,7 @@
 //   hold KEY / unhold KEY           keep a key (e.g. shift) down / let it go
 //   type TEXT                       characters, as typed into a text field
 //   open PATH | save-mesh PATH | save-scenario PATH | screenshot PATH [ui]
+//                                   (open first waits for an open or save under way)
 //   echo TEXT                       print a line on stdout
 //   report POSITION                 print "report X Y" (window coordinates) on stdout
 //   wait-file PATH [TIMEOUT]        until the file exists (60 s): lets a test drive real input

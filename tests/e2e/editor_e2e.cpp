@@ -238,3 +238,85 @@ quit
   EXPECT_GT(open.handles[1].transform.translate.norm(), 0.05) << "Ctrl+Z reached the editor";
   EXPECT_LT(closed.handles[1].transform.translate.norm(), 1e-12) << "the menu kept the keys";
 }
+
+TEST(EditorE2E, OpeningFilesBackToBackWhileTheSolverIsBusy) {
+  // The crash of issue 13: a file opened while the solver worker still published results of
+  // the previous document (a twisted tube here) made the editor draw and measure the new mesh
+  // with the old one's positions. Three rounds of: tube (busy), a plain mesh, the bar scenario
+  // at once; then a drag on the bar must still give what `primo deform` gives.
+  const std::string dir = artifacts("back-to-back");
+  const std::string scenario = make_bar_scenario(dir);
+  ASSERT_EQ(run(kPrimo + " generate cylinder --segments 48 --bands 80 -o " + dir +
+                "/tube.obj > /dev/null"),
+            0);
+  write_text(dir + "/tube.json", R"({
+  "format": "primo-scenario/1",
+  "mesh": "tube.obj",
+  "handles": [
+    { "name": "bottom", "select": { "box": { "min": [-1, -1, -1], "max": [1, 0.05, 1] } }, "fix": "all" },
+    { "name": "top", "select": { "box": { "min": [-1, 1.95, -1], "max": [1, 3, 1] } }, "fix": "all",
+      "transform": { "axis": [0, 1, 0], "angle_deg": 170, "translate": [0.6, -0.4, 0] } }
+  ]
+})");
+  std::string script = "wait-settled 60\n";
+  const char* pauses[] = {"0.05", "0.3", "0.8"};
+  for (const char* pause : pauses)
+    script += "open " + dir + "/tube.json\nwait " + pause + "\nopen " + dir + "/bar.obj\nopen " +
+              scenario + "\nwait 0.1\n";
+  script += R"(wait-settled 120
+move @top
+press left
+move @top 160 40 over 0.5
+release left
+wait-settled 120
+save-scenario )" + dir + R"(/editor.json
+save-mesh )" + dir + R"(/editor.obj
+quit
+)";
+  write_text(dir + "/open.txt", script);
+  const int code = run(kPrimo + " edit " + scenario + " --script " + dir + "/open.txt > " + dir +
+                       "/editor.log 2>&1");
+  std::printf("%s", read_text(dir + "/editor.log").c_str());
+  ASSERT_EQ(code, 0) << "the editor survived";
+  expect_deform_reproduces(dir);
+}
+
+TEST(EditorE2E, ALassoClosedNearItsStartSelects) {
+  // A lasso around the middle of the bar, released 2 px from where it began (it was taken for
+  // a click on empty space and cleared the selection); Ctrl+G makes a handle of what it took.
+  const std::string dir = artifacts("lasso");
+  const std::string scenario = make_bar_scenario(dir);
+  write_text(dir + "/lasso.txt", R"(wait-settled 60
+key l
+move center 60 0
+wait 0.2
+press left
+move center 42 42 over 0.1
+move center 0 60 over 0.1
+move center -42 42 over 0.1
+move center -60 0 over 0.1
+move center -42 -42 over 0.1
+move center 0 -60 over 0.1
+move center 42 -42 over 0.1
+move center 60 2 over 0.1
+release left
+wait 0.2
+key ctrl+g
+wait-settled 60
+save-scenario )" + dir + R"(/lasso.json
+screenshot )" + dir + R"(/lasso.png ui
+quit
+)");
+  const int code = run(kPrimo + " edit " + scenario + " --script " + dir + "/lasso.txt > " + dir +
+                       "/editor.log 2>&1");
+  std::printf("%s", read_text(dir + "/editor.log").c_str());
+  ASSERT_EQ(code, 0);
+  const Scenario s = load_scenario(dir + "/lasso.json");
+  ASSERT_EQ(s.handles.size(), 3u) << "the lasso selected faces and Ctrl+G made a handle of them";
+  ASSERT_EQ(s.handles[2].select.kind, Selection::Kind::Faces);
+  const Mesh bar = load_mesh(dir + "/bar.obj");
+  const size_t n = s.handles[2].select.indices.size();
+  std::printf("the lasso took %zu of %zu faces\n", n, size_t(bar.n_faces()));
+  EXPECT_GT(n, 4u);
+  EXPECT_LT(n, size_t(bar.n_faces()) / 2) << "a part, not everything";
+}

@@ -214,7 +214,15 @@ void App::run(const ScriptCommand& c) {
   using K = ScriptCommand::Kind;
   const size_t errors_before = editor_.error_count();
   switch (c.kind) {
-    case K::Open: editor_.open(c.text); break;
+    case K::Open:
+      // As a person would, a script opens the next file once the last open or save is done
+      // (the editor refuses a second file task); the solver may still be busy.
+      while (editor_.file_task_running()) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+        editor_.update(0.0);
+      }
+      editor_.open(c.text);
+      break;
     case K::SaveMesh:
       editor_.save_mesh(c.text);
       while (editor_.file_task_running()) {  // a script goes on once the file is there
