@@ -9,7 +9,7 @@
 #include <limits>
 #include <thread>
 
-#include "editor.h"
+#include "editor_harness.h"
 #include "primo/deformer.h"
 #include "primo/mesh_generators.h"
 #include "test_support.h"
@@ -17,95 +17,7 @@
 using namespace primo;
 using namespace primo::editor;
 using primo::test::max_distance;
-
-namespace {
-
-// The front-facing face whose centroid projects nearest the pixel (within 12 pixels).
-class CentroidPicker : public Picker {
- public:
-  explicit CentroidPicker(const Editor& e) : e_(e) {}
-  PickImage read(int x0, int y0, int w, int h) override {
-    PickImage img;
-    img.x0 = x0, img.y0 = y0, img.width = w, img.height = h;
-    img.face.assign(size_t(w) * h, -1);
-    img.depth.assign(size_t(w) * h, std::numeric_limits<float>::infinity());
-    if (w != 1 || h != 1) return img;
-    const MeshTopology& t = *e_.document()->topology;
-    const std::vector<Vec3> c = face_centroids(t, e_.positions());
-    double best = 12.0;
-    for (int f = 0; f < t.n_faces; ++f) {
-      const glm::dvec3 p(c[f].x(), c[f].y(), c[f].z());
-      const glm::dvec3 n(t.rest_geometry.normal[f].x(), t.rest_geometry.normal[f].y(),
-                         t.rest_geometry.normal[f].z());
-      if (glm::dot(n, p - e_.camera().eye()) >= 0) continue;
-      const glm::dvec3 s = e_.camera().project(p);
-      const double d = glm::length(glm::dvec2(s.x - x0, s.y - y0));
-      if (d < best) {
-        best = d;
-        img.face[0] = f;
-        img.depth[0] = float(glm::dot(p - e_.camera().eye(), e_.camera().forward()));
-      }
-    }
-    return img;
-  }
-
- private:
-  const Editor& e_;
-};
-
-struct Harness {
-  Editor editor;
-  CentroidPicker picker{editor};
-  Harness() {
-    editor.set_viewport({0, 0, 800, 600, 1.0});
-    editor.set_picker(&picker);
-    editor.adopt(make_document(make_bar(0.2, 1.0, 2, 10), ""));
-  }
-  void event(const InputEvent& e) {
-    editor.handle_event(e, false, false);
-    editor.update(0.016);
-  }
-  void key(int k, int mods = 0) {
-    event(InputEvent::key_event(k, GLFW_PRESS, mods));
-    event(InputEvent::key_event(k, GLFW_RELEASE, mods));
-  }
-  void select_where(double y_min, double y_max) {
-    Document& d = *editor.document();
-    FaceMask m(d.n_faces(), 0);
-    for (int f = 0; f < d.n_faces(); ++f) {
-      const double y = d.topology->rest_geometry.centroid[f].y();
-      m[f] = y >= y_min && y <= y_max;
-    }
-    d.state.selection = std::make_shared<const FaceMask>(m);
-    editor.commit("Select");
-  }
-  bool settle() {
-    for (int i = 0; i < 6000; ++i) {
-      editor.update(0.016);
-      if (editor.settled()) return true;
-      std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    }
-    return false;
-  }
-  // Fixed bottom, posed top.
-  void two_handles() {
-    select_where(-1, 0.06);
-    editor.make_handle(HandleMode::Fixed);
-    select_where(0.94, 2);
-    editor.make_handle(HandleMode::Pose);
-  }
-  void drag(const std::string& handle, double dx, double dy, int steps = 8) {
-    double x, y;
-    ASSERT_TRUE(editor.handle_window_position(handle, x, y));
-    event(InputEvent::cursor(x, y));
-    event(InputEvent::mouse(GLFW_MOUSE_BUTTON_LEFT, GLFW_PRESS, 0));
-    for (int k = 1; k <= steps; ++k) event(InputEvent::cursor(x + dx * k / steps, y + dy * k / steps));
-    event(InputEvent::mouse(GLFW_MOUSE_BUTTON_LEFT, GLFW_RELEASE, 0));
-  }
-  double diagonal() const { return editor.document()->topology->bbox_diagonal; }
-};
-
-}  // namespace
+using primo::editor::harness::Harness;
 
 TEST(EditorSession, DragIsOneStepAndUndoRestoresTheMesh) {
   Harness s;

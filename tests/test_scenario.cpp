@@ -737,7 +737,7 @@ TEST(ScenarioSolvedState, RoundTripsEveryDigitAndIsCheckedAgainstTheMesh) {
   m.rotation = Eigen::AngleAxisd(2.0, Vec3(1, 2, 3).normalized()).toRotationMatrix();
   m.translation = Vec3(0.1, -1.0 / 3.0, 2e-17);
   s.solved_state = SolvedStateSpec{{m, RigidTransform::identity()}};
-  s.editor = EditorSpec{{}};
+  s.editor = EditorSpec{{}, {}};
   const Scenario again = parse_scenario(scenario_to_json(s), "");
   ASSERT_TRUE(again.solved_state.has_value());
   ASSERT_EQ(again.solved_state->face_motions.size(), 2u);
@@ -763,6 +763,45 @@ TEST(ScenarioSolvedState, BadMotionsAndFixedRegionsAreErrors) {
   expect_contains(error(R"("solved_state": {})"), {"solved_state.face_motions", "missing"});
   expect_contains(error(R"("editor": {"fixed_regions": [0]})"),
                   {"editor.fixed_regions[0]", "no handle 0"});
+}
+
+TEST(ScenarioEditorMirrorPairs, RoundTripAndBadPairsAreErrors) {
+  const std::string two_handles = R"("handles": [
+      {"name": "a", "select": {"faces": [0]}, "fix": "all"},
+      {"name": "b", "select": {"faces": [1]}, "fix": "all"}])";
+  const std::string one_force = R"("forces": [
+      {"name": "f", "select": {"faces": [0]}, "stiffness": 1, "target_offset": [0, 0, 0]}])";
+  auto with = [&](const std::string& editor) {
+    return scenario_text(two_handles + ", " + one_force + ", \"editor\": " + editor);
+  };
+  Scenario s = parse_scenario(with(R"({"mirror_pairs": [{"handles": [1, 0], "axis": "y"}]})"), "");
+  ASSERT_TRUE(s.editor);
+  ASSERT_EQ(s.editor->mirror_pairs.size(), 1u);
+  EXPECT_FALSE(s.editor->mirror_pairs[0].forces);
+  EXPECT_EQ(s.editor->mirror_pairs[0].first, 1);
+  EXPECT_EQ(s.editor->mirror_pairs[0].second, 0);
+  EXPECT_EQ(s.editor->mirror_pairs[0].axis, 1);
+  const Scenario again = parse_scenario(scenario_to_json(s), "");
+  ASSERT_TRUE(again.editor);
+  ASSERT_EQ(again.editor->mirror_pairs.size(), 1u);
+  EXPECT_EQ(again.editor->mirror_pairs[0].axis, 1);
+  EXPECT_TRUE(again.editor->fixed_regions.empty());
+
+  auto error = [&](const std::string& pairs) {
+    return error_of([&] { parse_scenario(with(R"({"mirror_pairs": )" + pairs + "}"), "m.json"); });
+  };
+  expect_contains(error(R"([{"handles": [0, 2], "axis": "x"}])"),
+                  {"m.json", "editor.mirror_pairs[0].handles[1]", "no handle 2 (there are 2)"});
+  expect_contains(error(R"([{"forces": [0, 1], "axis": "x"}])"),
+                  {"editor.mirror_pairs[0].forces[1]", "no force 1 (there are 1)"});
+  expect_contains(error(R"([{"handles": [0, 0], "axis": "x"}])"), {"its own mirror twin"});
+  expect_contains(error(R"([{"handles": [0], "axis": "x"}])"), {"expected two indices"});
+  expect_contains(error(R"([{"handles": [0, 1], "axis": "w"}])"),
+                  {"editor.mirror_pairs[0].axis", "\"x\", \"y\" or \"z\""});
+  expect_contains(error(R"([{"handles": [0, 1], "forces": [0, 0], "axis": "x"}])"),
+                  {"exactly one of 'handles' and 'forces'"});
+  expect_contains(error(R"([{"handles": [0, 1], "axis": "x"}, {"handles": [1, 0], "axis": "z"}])"),
+                  {"editor.mirror_pairs[1]", "handle 1 is in two mirror pairs"});
 }
 
 }  // namespace

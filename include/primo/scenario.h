@@ -74,8 +74,18 @@ struct SolvedStateSpec {
 // Our extension `editor`: what the format cannot say about the editor's handles. A fixed
 // region and a posable handle are both `fix: "all"`; these indices into `handles` are the
 // fixed regions, so they come back as regions that cannot be dragged.
+// `mirror_pairs` are the editor's mirrored handles: two `handles` (or two `forces`) whose poses
+// the editor keeps mirror images across the plane perpendicular to `axis` through the mesh's
+// bounding-box centre. The solver does not read them: each handle's transform is in the file.
+struct MirrorPairSpec {
+  bool forces = false;  // indices into `forces` rather than `handles`
+  int first = 0, second = 0;
+  int axis = 0;         // 0 x, 1 y, 2 z
+};
+
 struct EditorSpec {
   std::vector<int> fixed_regions;
+  std::vector<MirrorPairSpec> mirror_pairs;
 };
 
 struct Scenario {

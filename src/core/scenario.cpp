@@ -460,10 +460,40 @@ SolvedStateSpec read_solved_state(const ScenarioReader& in, const Json& value) {
   return state;
 }
 
-EditorSpec read_editor(const ScenarioReader& in, const Json& value, size_t n_handles) {
+MirrorPairSpec read_mirror_pair(const ScenarioReader& in, const Json& value,
+                                const std::string& path, size_t n_handles, size_t n_forces) {
+  in.expect_object(value, path);
+  in.expect_only_keys(value, path, {"handles", "forces", "axis"});
+  const Json* handles = in.optional(value, "handles");
+  const Json* forces = in.optional(value, "forces");
+  if ((handles != nullptr) == (forces != nullptr))
+    in.fail(path, "expected exactly one of 'handles' and 'forces'");
+  MirrorPairSpec pair;
+  pair.forces = forces != nullptr;
+  const char* key = pair.forces ? "forces" : "handles";
+  const std::string at = child_path(path, key);
+  const std::vector<int> indices = in.index_list(pair.forces ? *forces : *handles, at);
+  if (indices.size() != 2) in.fail(at, "expected two indices");
+  const size_t n = pair.forces ? n_forces : n_handles;
+  for (size_t k = 0; k < 2; ++k)
+    if (size_t(indices[k]) >= n)
+      in.fail(element_path(at, k), "no " + std::string(pair.forces ? "force " : "handle ") +
+                                       std::to_string(indices[k]) + " (there are " +
+                                       std::to_string(n) + ")");
+  if (indices[0] == indices[1]) in.fail(at, "a handle cannot be its own mirror twin");
+  pair.first = indices[0], pair.second = indices[1];
+  const std::string axis = in.string(in.required(value, path, "axis"), child_path(path, "axis"));
+  if (axis != "x" && axis != "y" && axis != "z")
+    in.fail(child_path(path, "axis"), "expected \"x\", \"y\" or \"z\", got \"" + axis + "\"");
+  pair.axis = axis[0] - 'x';
+  return pair;
+}
+
+EditorSpec read_editor(const ScenarioReader& in, const Json& value, size_t n_handles,
+                       size_t n_forces) {
   const std::string path = "editor";
   in.expect_object(value, path);
-  in.expect_only_keys(value, path, {"fixed_regions"});
+  in.expect_only_keys(value, path, {"fixed_regions", "mirror_pairs"});
   EditorSpec editor;
   if (const Json* v = in.optional(value, "fixed_regions")) {
     const std::string at = child_path(path, "fixed_regions");
@@ -472,6 +502,23 @@ EditorSpec read_editor(const ScenarioReader& in, const Json& value, size_t n_han
       if (size_t(editor.fixed_regions[k]) >= n_handles)
         in.fail(element_path(at, k), "no handle " + std::to_string(editor.fixed_regions[k]) +
                                          " (there are " + std::to_string(n_handles) + ")");
+  }
+  if (const Json* v = in.optional(value, "mirror_pairs")) {
+    const std::string at = child_path(path, "mirror_pairs");
+    in.expect_array(*v, at);
+    std::vector<char> paired_handle(n_handles, 0), paired_force(n_forces, 0);
+    for (size_t k = 0; k < v->size(); ++k) {
+      const MirrorPairSpec pair =
+          read_mirror_pair(in, (*v)[k], element_path(at, k), n_handles, n_forces);
+      std::vector<char>& paired = pair.forces ? paired_force : paired_handle;
+      for (const int i : {pair.first, pair.second}) {
+        if (paired[size_t(i)])
+          in.fail(element_path(at, k), std::string(pair.forces ? "force " : "handle ") +
+                                           std::to_string(i) + " is in two mirror pairs");
+        paired[size_t(i)] = 1;
+      }
+      editor.mirror_pairs.push_back(pair);
+    }
   }
   return editor;
 }
@@ -571,7 +618,7 @@ Scenario parse_scenario(const std::string& json_text, const std::string& source)
   if (const Json* v = in.optional(root, "solved_state"))
     scenario.solved_state = read_solved_state(in, *v);
   if (const Json* v = in.optional(root, "editor"))
-    scenario.editor = read_editor(in, *v, scenario.handles.size());
+    scenario.editor = read_editor(in, *v, scenario.handles.size(), scenario.forces.size());
   return scenario;
 }
 
@@ -659,7 +706,19 @@ std::string scenario_to_json(const Scenario& scenario) {
     }
     root["solved_state"] = Json{{"face_motions", std::move(motions)}};
   }
-  if (scenario.editor) root["editor"] = Json{{"fixed_regions", scenario.editor->fixed_regions}};
+  if (scenario.editor) {
+    Json editor = Json::object();
+    if (!scenario.editor->fixed_regions.empty())
+      editor["fixed_regions"] = scenario.editor->fixed_regions;
+    if (!scenario.editor->mirror_pairs.empty()) {
+      Json pairs = Json::array();
+      for (const MirrorPairSpec& p : scenario.editor->mirror_pairs)
+        pairs.push_back(Json{{p.forces ? "forces" : "handles", {p.first, p.second}},
+                             {"axis", std::string(1, char('x' + p.axis))}});
+      editor["mirror_pairs"] = std::move(pairs);
+    }
+    root["editor"] = std::move(editor);
+  }
 
   return root.dump(2) + "\n";
 }

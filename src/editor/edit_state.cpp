@@ -50,7 +50,8 @@ bool operator==(const EditState& a, const EditState& b) {
   for (size_t i = 0; i < a.handles.size(); ++i) {
     const HandleGroup &x = a.handles[i], &y = b.handles[i];
     if (x.name != y.name || !same_group_structure(x, y) || x.stiffness != y.stiffness ||
-        !(x.pose == y.pose) || x.center != y.center)
+        !(x.pose == y.pose) || x.center != y.center || x.mirror_twin != y.mirror_twin ||
+        x.mirror_axis != y.mirror_axis)
       return false;
   }
   return true;
@@ -105,12 +106,14 @@ int add_handle(EditState& state, const MeshTopology& topology, const std::vector
   faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
   // 1. Take the faces away from the other groups.
   std::vector<HandleGroup> kept;
+  std::vector<int> new_index(state.handles.size(), -1);
   for (size_t g = 0; g < state.handles.size(); ++g) {
     HandleGroup h = state.handles[g];
     std::vector<int> rest;
     std::set_difference(h.faces->begin(), h.faces->end(), faces.begin(), faces.end(),
                         std::back_inserter(rest));
     if (rest.empty()) continue;
+    new_index[g] = int(kept.size());
     if (rest.size() != h.faces->size()) {
       // The pivot stays the rest centroid of what is left; the pose is kept.
       h.center = area_weighted_centroid(topology.rest_geometry, rest);
@@ -120,6 +123,8 @@ int add_handle(EditState& state, const MeshTopology& topology, const std::vector
     }
     kept.push_back(std::move(h));
   }
+  for (HandleGroup& h : kept)
+    if (h.mirror_twin >= 0) h.mirror_twin = new_index[size_t(h.mirror_twin)];
   state.handles = std::move(kept);
   // 2. The new group, posed where its faces are now.
   HandleGroup group = make_handle_group(
@@ -134,10 +139,26 @@ int add_handle(EditState& state, const MeshTopology& topology, const std::vector
 void remove_handle(EditState& state, int index) {
   if (index < 0 || index >= int(state.handles.size())) return;
   state.handles.erase(state.handles.begin() + index);
+  for (HandleGroup& h : state.handles) {
+    if (h.mirror_twin == index) h.mirror_twin = -1;  // the twin stays, on its own
+    else if (h.mirror_twin > index) --h.mirror_twin;
+  }
   if (state.active == index)
     state.active = std::min(index, int(state.handles.size()) - 1);
   else if (state.active > index)
     --state.active;
+}
+
+void link_mirror_twins(EditState& state, int a, int b, int axis) {
+  const int n = int(state.handles.size());
+  if (a < 0 || b < 0 || a >= n || b >= n || a == b) return;
+  for (const int i : {a, b}) {
+    const int old = state.handles[size_t(i)].mirror_twin;
+    if (old >= 0) state.handles[size_t(old)].mirror_twin = -1;
+  }
+  state.handles[size_t(a)].mirror_twin = b;
+  state.handles[size_t(b)].mirror_twin = a;
+  state.handles[size_t(a)].mirror_axis = state.handles[size_t(b)].mirror_axis = axis;
 }
 
 void set_handle_mode(EditState& state, int index, HandleMode mode) {

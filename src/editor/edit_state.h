@@ -78,6 +78,8 @@ std::vector<int> face_groups(const EditState& state, int n_faces);
 int add_handle(EditState& state, const MeshTopology& topology, const std::vector<Vec3>& current,
                std::vector<int> faces, HandleMode mode);
 void remove_handle(EditState& state, int index);
+// Links two groups as mirror twins across the plane perpendicular to `axis`.
+void link_mirror_twins(EditState& state, int a, int b, int axis);
 void set_handle_mode(EditState& state, int index, HandleMode mode);
 // Back to the rest pose.
 void reset_handle(EditState& state, int index);

@@ -96,6 +96,7 @@ void Editor::adopt(std::unique_ptr<Document> document) { apply_document(std::mov
 void Editor::apply_document(std::unique_ptr<Document> doc) {
   cancel_gesture();
   doc_ = std::move(doc);
+  mirror_maps_ = {};
   geometry_.reset();
   sent_any_ = false;
   hovered_handle_ = -1;
@@ -292,6 +293,7 @@ bool Editor::continue_solving() {
 }
 
 void Editor::live_edit() {
+  follow_mirror();
   // Paint strokes rebuild the solver's prisms: at most every kPaintSyncSeconds (and at the
   // end of the stroke), not at every dab.
   if (gesture_ == Gesture::Paint) return;
@@ -300,6 +302,7 @@ void Editor::live_edit() {
 
 void Editor::commit(const std::string& label) {
   if (!doc_) return;
+  follow_mirror();
   overlay_changed_ = true;
   sync_solver();
   doc_->commit(label);
@@ -542,6 +545,7 @@ void Editor::end_gesture() {
         }
         FaceMask mask = *doc_->state.selection;
         apply_selection(mask, faces, select_op_);
+        mirror_selection(*doc_->state.selection, mask);
         doc_->state.selection = std::make_shared<const FaceMask>(std::move(mask));
         lasso_.clear();
         what = g == Gesture::SelectBox ? "box select" : "lasso select";
@@ -604,6 +608,7 @@ void Editor::brush_dab() {
   if (gesture_ == Gesture::SelectBrush) {
     FaceMask mask = *s.selection;
     apply_selection(mask, faces, select_op_);
+    mirror_selection(*s.selection, mask);
     if (mask != *s.selection) s.selection = std::make_shared<const FaceMask>(std::move(mask));
     overlay_changed_ = true;
     return;
@@ -621,7 +626,8 @@ void Editor::brush_dab() {
       weights[i] *= falloff_weight(tools.paint_falloff, glm::length(glm::dvec2(p) - cursor_) / r);
     }
   }
-  FactorArray next = blend_factors(layer, doc_->n_faces(), faces, weights, value);
+  FactorArray next =
+      mirror_paint(layer, blend_factors(layer, doc_->n_faces(), faces, weights, value));
   const bool changes = next ? !layer || *next != *layer : layer != nullptr;
   if (!changes) return;
   layer = std::move(next);
@@ -696,6 +702,7 @@ void Editor::on_key(const InputEvent& e) {
     case GLFW_KEY_ESCAPE: cancel_gesture(); return;
     case GLFW_KEY_Z:
       if (ctrl && shift) return redo();
+      if (shift && !ctrl && !alt) return set_mirror(2, !tools.mirror[2]);
       if (ctrl) return undo();
       if (alt) {
         tools.xray = !tools.xray;
@@ -705,6 +712,7 @@ void Editor::on_key(const InputEvent& e) {
       return;
     case GLFW_KEY_Y:
       if (ctrl) redo();
+      if (shift && !ctrl && !alt) set_mirror(1, !tools.mirror[1]);
       return;
     case GLFW_KEY_Q:
       if (ctrl) return request_quit();
@@ -760,6 +768,7 @@ void Editor::on_key(const InputEvent& e) {
     case GLFW_KEY_DELETE:
     case GLFW_KEY_X:
       if (plain && doc_) delete_handle(doc_->state.active);
+      if (e.key == GLFW_KEY_X && shift && !ctrl && !alt) set_mirror(0, !tools.mirror[0]);
       return;
     case GLFW_KEY_TAB:
       if (doc_ && !doc_->state.handles.empty()) {
@@ -819,7 +828,9 @@ void Editor::redo() {
 
 void Editor::set_selection(const FaceMask& mask, const std::string& label) {
   if (!doc_) return;
-  doc_->state.selection = std::make_shared<const FaceMask>(mask);
+  FaceMask mirrored = mask;
+  mirror_selection(*doc_->state.selection, mirrored);
+  doc_->state.selection = std::make_shared<const FaceMask>(std::move(mirrored));
   commit(label);
 }
 
@@ -873,6 +884,7 @@ void Editor::make_handle(HandleMode mode) {
     return error("Select faces first: press Q and brush over the surface, then make the handle");
   if (int(faces.size()) == doc_->n_faces() && mode != HandleMode::Spring)
     info("Every face is in this handle: the whole mesh will move rigidly");
+  if (make_mirrored_handles(faces, mode)) return;
   EditState& s = doc_->state;
   const int g = add_handle(s, *doc_->topology, positions(), std::move(faces), mode);
   FaceMask none = *s.selection;
@@ -895,6 +907,7 @@ void Editor::delete_handle(int index) {
 void Editor::reset_handle(int index) {
   if (!doc_ || index < 0 || index >= int(doc_->state.handles.size())) return;
   primo::editor::reset_handle(doc_->state, index);
+  primo::editor::reset_handle(doc_->state, doc_->state.handles[size_t(index)].mirror_twin);
   commit("Reset '" + doc_->state.handles[index].name + "'");
 }
 
@@ -915,6 +928,7 @@ void Editor::set_handle_mode(int index, HandleMode mode) {
   if (!doc_ || index < 0 || index >= int(doc_->state.handles.size())) return;
   if (doc_->state.handles[index].mode == mode) return;
   primo::editor::set_handle_mode(doc_->state, index, mode);
+  primo::editor::set_handle_mode(doc_->state, doc_->state.handles[size_t(index)].mirror_twin, mode);
   commit("'" + doc_->state.handles[index].name + "' to " + mode_label(mode));
   stale_up_to_ = message_serial_;
 }

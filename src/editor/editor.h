@@ -5,6 +5,7 @@
 // calls its commands from menus and panels, and draws what it exposes. Tests drive it the
 // same way with a stand-in Picker instead of the GPU pick buffer.
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <future>
@@ -17,6 +18,7 @@
 #include "document.h"
 #include "gizmo.h"
 #include "input.h"
+#include "mirror.h"
 #include "paint.h"
 #include "preferences.h"
 #include "recent_files.h"
@@ -41,6 +43,9 @@ struct ToolSettings {
   Falloff paint_falloff = Falloff::Constant;  // from the brush's centre to its rim
   bool xray = false;           // selections reach hidden faces too
   double linked_angle_deg = 30.0;  // select linked by angle stops at sharper edges
+  // Symmetry across the planes perpendicular to X, Y, Z through the mesh's centre: selecting
+  // and painting act on the twin faces too, and handles are made in mirrored pairs.
+  std::array<bool, 3> mirror{false, false, false};
 };
 
 struct DisplaySettings {
@@ -163,6 +168,16 @@ class Editor {
   bool continue_solving();
   void set_active_handle(int index);
   void set_handle_mode(int index, HandleMode mode);
+
+  // --- Symmetry (editor_mirror.cpp) ------------------------------------------------------
+  // Turns mirroring across the plane perpendicular to `axis` on or off; turning it on
+  // matches the twin faces (once per mesh and axis) and says how many were matched and how.
+  void set_mirror(int axis, bool on);
+  // The twin faces across `axis` (matched on first use), or null without a document.
+  const MirrorMap* mirror_map(int axis);
+  // The status of mirroring across `axis` ("" when off): faces matched, by what.
+  std::string mirror_summary(int axis) const;
+
   void frame_all();
   void frame_selection();  // the selection, else the active handle, else everything
   void set_tool(Tool tool);
@@ -244,6 +259,14 @@ class Editor {
   void sync_solver();
   void apply_document(std::unique_ptr<Document> doc);
   void set_selection(const FaceMask& mask, const std::string& label);
+  // Symmetry hooks: copy a selection or paint change to the twin faces of every mirror axis
+  // that is on, and pose the leading handle's twin as its mirror image.
+  void mirror_selection(const FaceMask& before, FaceMask& after);
+  FactorArray mirror_paint(const FactorArray& before, FactorArray after);
+  void follow_mirror();
+  // make_handle with a mirror on: the selection split into mirrored pairs when it lies on
+  // both sides (or one) away from the plane. False when it is not such a selection.
+  bool make_mirrored_handles(const std::vector<int>& faces, HandleMode mode);
 
   std::function<void()> wake_ui_;
   std::unique_ptr<Document> doc_;
@@ -251,6 +274,8 @@ class Editor {
   ViewportRect viewport_;
   Picker* picker_ = nullptr;
   std::unique_ptr<SolverWorker> worker_;
+
+  std::array<std::shared_ptr<const MirrorMap>, 3> mirror_maps_;  // per axis, per document
 
   // Unsaved work.
   void open_file(const std::string& path, bool recovered);

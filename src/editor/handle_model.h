@@ -47,6 +47,10 @@ struct HandleGroup {
   Vec3 center = Vec3::Zero();  // rest area-weighted centroid: the pivot
   Pose pose;
   int color = 0;               // palette slot, stable across edits
+  // Symmetry: the index of the group that mirrors this one across the plane perpendicular to
+  // `mirror_axis` (0 x, 1 y, 2 z), or -1. The editor keeps the pair's poses mirror images.
+  int mirror_twin = -1;
+  int mirror_axis = 0;
 
   RigidTransform transform() const;
   // Where the pivot is now: center + translate.

@@ -62,7 +62,11 @@ Scenario export_scenario(const EditState& state, const std::string& mesh_path,
       s.regions.push_back(std::move(r));
     }
 
-  for (const HandleGroup& g : state.handles) {
+  // Where each group went: an index into forces or into handles.
+  std::vector<int> spec_index(state.handles.size(), -1);
+  for (size_t i = 0; i < state.handles.size(); ++i) {
+    const HandleGroup& g = state.handles[i];
+    spec_index[i] = int(g.mode == HandleMode::Spring ? s.forces.size() : s.handles.size());
     if (g.mode == HandleMode::Spring) {
       ForceSpec f;
       f.name = g.name;
@@ -90,6 +94,15 @@ Scenario export_scenario(const EditState& state, const std::string& mesh_path,
       s.editor->fixed_regions.push_back(int(s.handles.size()));
     }
     s.handles.push_back(std::move(h));
+  }
+  for (size_t i = 0; i < state.handles.size(); ++i) {
+    const HandleGroup& g = state.handles[i];
+    const int j = g.mirror_twin;
+    if (j <= int(i) || j >= int(state.handles.size())) continue;  // each pair once
+    const bool forces = g.mode == HandleMode::Spring;
+    if (forces != (state.handles[size_t(j)].mode == HandleMode::Spring)) continue;
+    if (!s.editor) s.editor = EditorSpec{};
+    s.editor->mirror_pairs.push_back({forces, spec_index[i], spec_index[size_t(j)], g.mirror_axis});
   }
   if (motions) s.solved_state = SolvedStateSpec{*motions};
   return s;
@@ -148,6 +161,12 @@ EditState import_scenario(const Scenario& scenario, const ResolvedScenario& reso
     g.pose.translate = f.target_offset;
     add(std::move(g), f.name.empty() ? "Spring " + std::to_string(state.next_number) : f.name);
   }
+  if (scenario.editor)
+    for (const MirrorPairSpec& p : scenario.editor->mirror_pairs) {
+      // Forces come after the handles in the editor's list.
+      const int offset = p.forces ? int(resolved.handles.size()) : 0;
+      link_mirror_twins(state, offset + p.first, offset + p.second, p.axis);
+    }
   state.active = state.handles.empty() ? -1 : 0;
   return state;
 }

@@ -161,11 +161,33 @@ void selection_buttons(Editor& e) {
                       e.tools.linked_angle_deg);
 }
 
+// X / Y / Z mirror toggles, for every tool: selecting, painting and making handles.
+void symmetry_row(Editor& e) {
+  ImGui::TextUnformatted("Mirror");
+  help_marker("Symmetry across the mesh's centre plane: selections and paint strokes reach the "
+              "twin faces, and a handle made on one side gets a twin that moves as its mirror "
+              "image. Twins are matched by topology when the mesh's connectivity is symmetric "
+              "(however it is posed), else by position. Shift+X / Shift+Y / Shift+Z.");
+  for (int axis = 0; axis < 3; ++axis) {
+    ImGui::SameLine();
+    bool on = e.tools.mirror[size_t(axis)];
+    const std::string label = std::string(axis_name(axis)) + "##mirror";
+    if (ImGui::Checkbox(label.c_str(), &on)) e.set_mirror(axis, on);
+    if (ImGui::IsItemHovered()) {
+      const std::string summary = e.mirror_summary(axis);
+      ImGui::SetTooltip("%s", summary.empty() ? (std::string("Mirror across ") + axis_name(axis) +
+                                                 " (Shift+" + axis_name(axis) + ")").c_str()
+                                              : summary.c_str());
+    }
+  }
+}
+
 void tool_section(Editor& e) {
   if (!ImGui::CollapsingHeader("Tool", ImGuiTreeNodeFlags_DefaultOpen)) return;
   ToolSettings& t = e.tools;
   Document* doc = e.document();
   ImGui::Text("%s", tool_label(t.tool));
+  symmetry_row(e);
   switch (t.tool) {
     case Tool::Select: {
       int shape = int(t.shape);
@@ -547,6 +569,13 @@ void draw_menu(Editor& e, UiState& ui) {
     if (ImGui::MenuItem("Grow selection", "Ctrl+=")) e.grow_selection();
     if (ImGui::MenuItem("Shrink selection", "Ctrl+-")) e.shrink_selection();
     ImGui::Separator();
+    for (int axis = 0; axis < 3; ++axis) {
+      bool on = e.tools.mirror[size_t(axis)];
+      const std::string label = std::string("Mirror ") + axis_name(axis);
+      const std::string key = std::string("Shift+") + axis_name(axis);
+      if (ImGui::MenuItem(label.c_str(), key.c_str(), &on, doc != nullptr)) e.set_mirror(axis, on);
+    }
+    ImGui::Separator();
     if (ImGui::MenuItem("Handle from selection", "Ctrl+G")) e.make_handle(HandleMode::Pose);
     if (ImGui::MenuItem("Fixed region from selection", "Ctrl+Shift+G")) e.make_handle(HandleMode::Fixed);
     if (ImGui::MenuItem("Spring from selection", "Ctrl+Alt+G")) e.make_handle(HandleMode::Spring);
@@ -703,6 +732,7 @@ void draw_help(UiState& ui) {
   table("sel", {{"A / Alt + A / Ctrl + I", "select all / none / invert"},
                 {"Ctrl + = / Ctrl + -", "grow / shrink selection"},
                 {"Ctrl + L / Ctrl + Shift + L", "select linked / linked up to sharp edges"},
+                {"Shift + X / Y / Z", "mirror selecting, painting and handles across X / Y / Z"},
                 {"Ctrl + G", "handle from selection (position + orientation)"},
                 {"Ctrl + Shift + G", "fixed region from selection"},
                 {"Ctrl + Alt + G", "spring from selection"},
