@@ -11,6 +11,7 @@
 #include <string>
 
 #include "edit_state.h"
+#include "headless_imgui.h"
 #include "editor.h"
 #include "panels.h"
 #include "primo/mesh_generators.h"
@@ -20,18 +21,7 @@ using namespace primo::editor;
 
 namespace {
 
-struct HeadlessImGui {
-  HeadlessImGui() {
-    ImGui::CreateContext();
-    ImGuiIO& io = ImGui::GetIO();
-    io.IniFilename = nullptr;
-    io.DisplaySize = ImVec2(1280, 800);
-    io.DeltaTime = 1.0f / 60.0f;
-    unsigned char* pixels;
-    int w, h;
-    io.Fonts->GetTexDataAsRGBA32(&pixels, &w, &h);
-  }
-  ~HeadlessImGui() { ImGui::DestroyContext(); }
+struct HeadlessImGui : primo::test::HeadlessImGui {
   // One frame with the mouse at (x, y); returns the ID of the widget under it (0: none).
   ImGuiID frame(Editor& e, UiState& ui, float x, float y) {
     ImGui::GetIO().MousePos = ImVec2(x, y);

@@ -66,3 +66,24 @@ TEST(UndoStack, GoesToAnyStepOfTheVisibleHistory) {
   EXPECT_FALSE(u.can_undo());
   EXPECT_EQ(u.go_to(99).prisms.height, 1.0) << "out of range: stays";
 }
+
+TEST(UndoStack, RunsOfLikeStepsAreGroups) {
+  UndoStack u(with_height(1.0));
+  const char* labels[] = {"Drag 'Hand'", "Drag 'Hand'", "Drag 'Hand'", "Paint stiffness",
+                          "Drag 'Hand'", "Drag 'Hand'"};
+  double h = 1.0;
+  for (const char* label : labels) ASSERT_TRUE(u.push(label, with_height(h += 1.0)));
+  const std::vector<UndoStack::Group> g = u.groups();
+  ASSERT_EQ(g.size(), 4u);  // as opened | 3 drags | paint | 2 drags
+  EXPECT_EQ(g[0].first, 0u);
+  EXPECT_EQ(g[0].size(), 1u);
+  EXPECT_EQ(g[1].first, 1u);
+  EXPECT_EQ(g[1].last, 3u);
+  EXPECT_EQ(g[2].size(), 1u);
+  EXPECT_EQ(g[3].first, 5u);
+  EXPECT_EQ(g[3].last, 6u);
+  EXPECT_EQ(u.group_of(2).first, 1u);
+  EXPECT_EQ(u.group_of(2).last, 3u);
+  EXPECT_EQ(u.group_of(6).first, 5u);
+  EXPECT_EQ(u.group_of(0).last, 0u);
+}

@@ -47,6 +47,11 @@ Editor::Editor(std::function<void()> wake_ui)
   worker_->set_iteration_limit(false);
   preferences_ = load_preferences();
   apply_preferences();
+  if (!preferences_.problems.empty()) {
+    std::string text = "Some preferences could not be used:";
+    for (const std::string& problem : preferences_.problems) text += "\n" + problem;
+    error(text);
+  }
 }
 
 void Editor::apply_preferences() {
@@ -60,6 +65,7 @@ void Editor::apply_preferences() {
   tools.paint_strength = p.paint_strength;
   tools.paint_falloff = p.paint_falloff;
   autosave_every_ = 60.0 * p.autosave_minutes;
+  settle_limit_ = p.settle_seconds;
 }
 
 Editor::~Editor() {
@@ -83,7 +89,10 @@ void Editor::open_file(const std::string& path, bool recovered) {
         doc->saved_state = initial_edit_state(doc->n_faces());
       }
       // A mesh without a scenario settles to the user's tolerance.
-      if (!recovered && doc->scenario_path.empty()) doc->solver.tolerance = preferences_.tolerance;
+      if (!recovered && doc->scenario_path.empty()) {
+        doc->solver.tolerance = preferences_.tolerance;
+        doc->solver.max_iterations = preferences_.max_iterations;
+      }
       apply_document(std::make_unique<Document>(std::move(*doc)));
       if (!recovered) recent_.add(path);
       last_autosave_ = clock_;
@@ -207,6 +216,14 @@ void Editor::update(double seconds) {
   status_ = worker_->status();
   if (status_.phase == SolverPhase::Failed && before != SolverPhase::Failed)
     error("The solver could not use this setup: " + status_.error);
+  // Preferences > Settle at most: a settle that outlasts it stops as the Stop button would.
+  if (settle_limit_ > 0 && gesture_ == Gesture::None && status_.phase == SolverPhase::Solving &&
+      clock_ - last_submit_clock_ >= settle_limit_ && settle_stopped_at_ != last_submit_clock_) {
+    settle_stopped_at_ = last_submit_clock_;
+    worker_->stop();
+    info("Stopped settling after " + format_duration(settle_limit_) +
+         " (Edit > Preferences > Settle at most); Continue solves on");
+  }
   // Geometry of a problem submitted before the document was opened belongs to the previous
   // document (the worker may still be publishing it): never show it.
   if (status_.geometry && status_.geometry != geometry_ &&
@@ -268,13 +285,17 @@ void Editor::sync_solver() {
     problem->spec = doc_->solver;
     problem->start_motions = std::move(doc_->start_motions);  // once: later rebuilds keep the pose
     doc_->start_motions.clear();
+    last_submit_clock_ = clock_;
     const std::uint64_t serial = worker_->submit_problem(std::move(problem));
     if (!sent_any_) document_serial_ = serial;  // the document's first problem
   } else {
     bool moved = false;
     for (size_t g = 0; g < s.handles.size(); ++g)
       moved = moved || !(s.handles[g].pose == sent_.handles[g].pose);
-    if (moved) worker_->submit_targets(targets_of(s));
+    if (moved) {
+      worker_->submit_targets(targets_of(s));
+      last_submit_clock_ = clock_;
+    }
   }
   sent_ = s;
   sent_any_ = true;
@@ -289,6 +310,7 @@ bool Editor::continue_solving() {
   // The same targets again: a new request, whose iterations count from zero, warm-started
   // from the state where the last one stopped.
   worker_->submit_targets(targets_of(sent_));
+  last_submit_clock_ = clock_;
   return true;
 }
 
@@ -694,106 +716,6 @@ void Editor::update_hover() {
 
 // --- Keyboard ---------------------------------------------------------------------------
 
-void Editor::on_key(const InputEvent& e) {
-  const bool ctrl = e.mods & GLFW_MOD_CONTROL, shift = e.mods & GLFW_MOD_SHIFT,
-             alt = e.mods & GLFW_MOD_ALT;
-  const bool plain = !(ctrl || shift || alt);
-  switch (e.key) {
-    case GLFW_KEY_ESCAPE: cancel_gesture(); return;
-    case GLFW_KEY_Z:
-      if (ctrl && shift) return redo();
-      if (shift && !ctrl && !alt) return set_mirror(2, !tools.mirror[2]);
-      if (ctrl) return undo();
-      if (alt) {
-        tools.xray = !tools.xray;
-        return info(tools.xray ? "X-ray selection on: hidden faces are selected too"
-                               : "X-ray selection off");
-      }
-      return;
-    case GLFW_KEY_Y:
-      if (ctrl) redo();
-      if (shift && !ctrl && !alt) set_mirror(1, !tools.mirror[1]);
-      return;
-    case GLFW_KEY_Q:
-      if (ctrl) return request_quit();
-      if (plain) set_tool(Tool::Select);
-      return;
-    case GLFW_KEY_G:
-      if (ctrl && alt) return make_handle(HandleMode::Spring);
-      if (ctrl && shift) return make_handle(HandleMode::Fixed);
-      if (ctrl) return make_handle(HandleMode::Pose);
-      if (alt && shift) return reset_all_handles();
-      if (alt && doc_) return reset_handle(doc_->state.active);
-      if (plain) set_tool(Tool::Drag);
-      return;
-    case GLFW_KEY_W:
-      if (plain) set_tool(Tool::Move);
-      return;
-    case GLFW_KEY_E:
-      if (plain) set_tool(Tool::Rotate);
-      return;
-    case GLFW_KEY_P:
-      if (plain) set_tool(Tool::Paint);
-      return;
-    case GLFW_KEY_C:
-    case GLFW_KEY_B:
-    case GLFW_KEY_L:
-      if (e.key == GLFW_KEY_L && ctrl) return select_linked(shift);  // Blender's Ctrl+L
-      if (!plain) return;
-      tools.shape = e.key == GLFW_KEY_C   ? SelectShape::Brush
-                    : e.key == GLFW_KEY_B ? SelectShape::Box
-                                          : SelectShape::Lasso;
-      return set_tool(Tool::Select);
-    case GLFW_KEY_LEFT_BRACKET:
-      tools.brush_radius = std::max(2.0, tools.brush_radius / 1.2);
-      return;
-    case GLFW_KEY_RIGHT_BRACKET:
-      tools.brush_radius = std::min(400.0, tools.brush_radius * 1.2);
-      return;
-    case GLFW_KEY_A:
-      if (alt) return clear_selection();
-      if (plain) select_all();
-      return;
-    case GLFW_KEY_I:
-      if (ctrl) invert_selection();
-      return;
-    case GLFW_KEY_EQUAL:
-    case GLFW_KEY_KP_ADD:
-      if (ctrl) grow_selection();
-      return;
-    case GLFW_KEY_MINUS:
-    case GLFW_KEY_KP_SUBTRACT:
-      if (ctrl) shrink_selection();
-      return;
-    case GLFW_KEY_DELETE:
-    case GLFW_KEY_X:
-      if (plain && doc_) delete_handle(doc_->state.active);
-      if (e.key == GLFW_KEY_X && shift && !ctrl && !alt) set_mirror(0, !tools.mirror[0]);
-      return;
-    case GLFW_KEY_TAB:
-      if (doc_ && !doc_->state.handles.empty()) {
-        const int n = int(doc_->state.handles.size());
-        set_active_handle((doc_->state.active + (shift ? n - 1 : 1)) % n);
-      }
-      return;
-    case GLFW_KEY_F:
-    case GLFW_KEY_KP_DECIMAL:
-      if (plain) frame_selection();
-      return;
-    case GLFW_KEY_HOME: return frame_all();
-    case GLFW_KEY_KP_1: return camera_.view_preset(ctrl ? ViewPreset::Back : ViewPreset::Front);
-    case GLFW_KEY_KP_3: return camera_.view_preset(ctrl ? ViewPreset::Left : ViewPreset::Right);
-    case GLFW_KEY_KP_7: return camera_.view_preset(ctrl ? ViewPreset::Bottom : ViewPreset::Top);
-    case GLFW_KEY_KP_5: return camera_.set_orthographic(!camera_.orthographic());
-    case GLFW_KEY_4: if (plain) display.wireframe = !display.wireframe; return;
-    case GLFW_KEY_5: if (plain) display.smooth = !display.smooth; return;
-    case GLFW_KEY_6: if (plain) display.prisms = !display.prisms; return;
-    case GLFW_KEY_7: if (plain) display.heat_map = !display.heat_map; return;
-    case GLFW_KEY_8: if (plain) display.paint_overlay = !display.paint_overlay; return;
-    default: return;
-  }
-}
-
 // --- Commands ---------------------------------------------------------------------------
 
 void Editor::undo() {
@@ -805,6 +727,17 @@ void Editor::undo() {
   overlay_changed_ = true;
   sync_solver();
   info("Undo " + label);
+}
+
+void Editor::undo_group() {
+  if (!doc_) return;
+  const UndoStack& h = doc_->history;
+  if (!h.can_undo()) return info("Nothing to undo");
+  const UndoStack::Group g = h.group_of(h.position());
+  const std::size_t steps = h.position() - g.first + 1;  // redone ones of the group only
+  const std::string label = h.label(h.position());
+  go_to_history(g.first - 1);
+  info("Undo " + (steps > 1 ? std::to_string(steps) + " x " : std::string()) + label);
 }
 
 void Editor::go_to_history(std::size_t index) {

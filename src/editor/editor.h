@@ -146,6 +146,8 @@ class Editor {
   void cancel_gesture();
 
   // --- Commands -------------------------------------------------------------------------
+  // Undoes the current step's whole group of like steps (UndoStack::groups).
+  void undo_group();
   void undo();
   void redo();
   // Jumps to step `index` of the undo history (UndoStack::label), as undos or redos would.
@@ -187,6 +189,13 @@ class Editor {
   void live_edit();
   void commit(const std::string& label);
   void request_quit() { quit_requested_ = true; }
+
+  // --- Keys (editor_keys.cpp) -------------------------------------------------------------
+  // The user's key map (Edit > Preferences > Keys; changes there take effect at once).
+  const KeyMap& key_map() const { return preferences_.keys; }
+  // Runs a keyboard command as its key would. False for the window's own commands (open,
+  // save, export, screenshot, panels, controls), which the window runs, and without effect.
+  bool run_action(Action action);
   bool quit_requested() const { return quit_requested_; }
   void info(const std::string& text);
   void error(const std::string& text);
@@ -285,6 +294,10 @@ class Editor {
   double autosave_every_ = 120.0, last_autosave_ = 0.0;
   RecentFiles recent_;
   Preferences preferences_;
+  double settle_limit_ = 0.0;        // seconds; 0: settle until converged
+  double last_submit_clock_ = 0.0;   // clock_ when the solver was last given something to do
+  double settle_stopped_at_ = -1.0;  // the submission the settle limit stopped
+
 
   // Solver bookkeeping.
   EditState sent_;

@@ -79,7 +79,16 @@ const std::map<std::string, int>& named_keys() {
       {"period", GLFW_KEY_PERIOD}, {"kp_add", GLFW_KEY_KP_ADD},
       {"kp_subtract", GLFW_KEY_KP_SUBTRACT}, {"kp_decimal", GLFW_KEY_KP_DECIMAL},
       {"shift", GLFW_KEY_LEFT_SHIFT}, {"ctrl", GLFW_KEY_LEFT_CONTROL},
-      {"alt", GLFW_KEY_LEFT_ALT}, {"super", GLFW_KEY_LEFT_SUPER}};
+      {"alt", GLFW_KEY_LEFT_ALT}, {"super", GLFW_KEY_LEFT_SUPER},
+      // What key_label prints, so that labels read back.
+      {"=", GLFW_KEY_EQUAL}, {"-", GLFW_KEY_MINUS},
+      {",", GLFW_KEY_COMMA}, {".", GLFW_KEY_PERIOD}, {"/", GLFW_KEY_SLASH},
+      {";", GLFW_KEY_SEMICOLON}, {"'", GLFW_KEY_APOSTROPHE}, {"`", GLFW_KEY_GRAVE_ACCENT},
+      {"\\", GLFW_KEY_BACKSLASH}, {"insert", GLFW_KEY_INSERT}, {"page up", GLFW_KEY_PAGE_UP},
+      {"page down", GLFW_KEY_PAGE_DOWN}, {"numpad .", GLFW_KEY_KP_DECIMAL},
+      {"numpad plus", GLFW_KEY_KP_ADD}, {"numpad minus", GLFW_KEY_KP_SUBTRACT},
+      {"numpad *", GLFW_KEY_KP_MULTIPLY}, {"numpad /", GLFW_KEY_KP_DIVIDE},
+      {"numpad enter", GLFW_KEY_KP_ENTER}};
   return keys;
 }
 
@@ -92,6 +101,15 @@ int key_from_name(const std::string& name) {
     return GLFW_KEY_0 + (name[0] - '0');
   if (name.size() == 4 && name.rfind("kp_", 0) == 0 && std::isdigit(static_cast<unsigned char>(name[3])))
     return GLFW_KEY_KP_0 + (name[3] - '0');
+  if (name.size() == 8 && name.rfind("numpad ", 0) == 0 &&
+      std::isdigit(static_cast<unsigned char>(name[7])))
+    return GLFW_KEY_KP_0 + (name[7] - '0');
+  if (name.rfind("key ", 0) == 0) {  // key_label of a key without a name
+    const std::string code = name.substr(4);
+    if (!code.empty() && code.size() < 5 &&
+        std::all_of(code.begin(), code.end(), [](unsigned char c) { return std::isdigit(c); }))
+      return std::stoi(code);
+  }
   if (name.size() >= 2 && name[0] == 'f') {
     int n = 0;
     try {
@@ -106,6 +124,31 @@ int key_from_name(const std::string& name) {
 
 }  // namespace
 
+std::string key_label(int key) {
+  if (key >= GLFW_KEY_A && key <= GLFW_KEY_Z) return std::string(1, char('A' + (key - GLFW_KEY_A)));
+  if (key >= GLFW_KEY_0 && key <= GLFW_KEY_9) return std::string(1, char('0' + (key - GLFW_KEY_0)));
+  if (key >= GLFW_KEY_KP_0 && key <= GLFW_KEY_KP_9) return "Numpad " + std::to_string(key - GLFW_KEY_KP_0);
+  if (key >= GLFW_KEY_F1 && key <= GLFW_KEY_F25) return "F" + std::to_string(key - GLFW_KEY_F1 + 1);
+  static const std::map<int, std::string> labels = {
+      {GLFW_KEY_ESCAPE, "Esc"}, {GLFW_KEY_ENTER, "Enter"}, {GLFW_KEY_TAB, "Tab"},
+      {GLFW_KEY_SPACE, "Space"}, {GLFW_KEY_BACKSPACE, "Backspace"}, {GLFW_KEY_DELETE, "Delete"},
+      {GLFW_KEY_INSERT, "Insert"}, {GLFW_KEY_HOME, "Home"}, {GLFW_KEY_END, "End"},
+      {GLFW_KEY_PAGE_UP, "Page Up"}, {GLFW_KEY_PAGE_DOWN, "Page Down"}, {GLFW_KEY_LEFT, "Left"},
+      {GLFW_KEY_RIGHT, "Right"}, {GLFW_KEY_UP, "Up"}, {GLFW_KEY_DOWN, "Down"},
+      {GLFW_KEY_EQUAL, "="}, {GLFW_KEY_MINUS, "-"}, {GLFW_KEY_LEFT_BRACKET, "["},
+      {GLFW_KEY_RIGHT_BRACKET, "]"}, {GLFW_KEY_COMMA, ","}, {GLFW_KEY_PERIOD, "."},
+      {GLFW_KEY_SLASH, "/"}, {GLFW_KEY_SEMICOLON, ";"}, {GLFW_KEY_APOSTROPHE, "'"},
+      {GLFW_KEY_GRAVE_ACCENT, "`"}, {GLFW_KEY_BACKSLASH, "\\"}, {GLFW_KEY_KP_DECIMAL, "Numpad ."},
+      {GLFW_KEY_KP_ADD, "Numpad Plus"}, {GLFW_KEY_KP_SUBTRACT, "Numpad Minus"},
+      {GLFW_KEY_KP_MULTIPLY, "Numpad *"}, {GLFW_KEY_KP_DIVIDE, "Numpad /"},
+      {GLFW_KEY_KP_ENTER, "Numpad Enter"}, {GLFW_KEY_LEFT_SHIFT, "Shift"},
+      {GLFW_KEY_RIGHT_SHIFT, "Shift"}, {GLFW_KEY_LEFT_CONTROL, "Ctrl"},
+      {GLFW_KEY_RIGHT_CONTROL, "Ctrl"}, {GLFW_KEY_LEFT_ALT, "Alt"}, {GLFW_KEY_RIGHT_ALT, "Alt"},
+      {GLFW_KEY_LEFT_SUPER, "Super"}, {GLFW_KEY_RIGHT_SUPER, "Super"}};
+  if (const auto it = labels.find(key); it != labels.end()) return it->second;
+  return "Key " + std::to_string(key);
+}
+
 void parse_key_combo(const std::string& text, int& key, int& mods) {
   std::string lower(text);
   std::transform(lower.begin(), lower.end(), lower.begin(),
@@ -116,7 +159,7 @@ void parse_key_combo(const std::string& text, int& key, int& mods) {
   std::string part;
   std::vector<std::string> names;
   while (std::getline(parts, part, '+')) names.push_back(part);
-  if (names.empty() || names.back().empty()) throw std::invalid_argument("empty key '" + text + "'");
+  if (names.empty() || names.back().empty() || lower.back() == '+') throw std::invalid_argument("empty key '" + text + "'");
   for (size_t i = 0; i + 1 < names.size(); ++i) {
     const int bit = modifier_bit(key_from_name(names[i]));
     if (bit == 0) throw std::invalid_argument("'" + names[i] + "' is not a modifier in '" + text + "'");

@@ -39,7 +39,10 @@ using InputQueue = std::deque<InputEvent>;
 // Modifier bit of a modifier key (GLFW_KEY_LEFT_SHIFT -> GLFW_MOD_SHIFT), 0 for other keys.
 int modifier_bit(int key);
 
-// "ctrl+shift+z", "kp_1", "escape", "f12", "a" -> key code and modifier bits. Throws
+// "A", "Numpad 1", "Delete", "[": a key's name as menus print it; parse_key_combo reads it.
+std::string key_label(int key);
+
+// "ctrl+shift+z", "kp_1", "Numpad 1", "escape", "f12", "a" -> key code and modifier bits. Throws
 // std::invalid_argument for an unknown name.
 void parse_key_combo(const std::string& text, int& key, int& mods);
 

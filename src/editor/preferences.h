@@ -1,11 +1,14 @@
 #pragma once
 // The user's defaults, kept between runs in config_folder()/preferences.json and edited in
-// Edit > Preferences: display, brushes, autosave, and the solver tolerance of meshes opened
-// without a scenario. A missing or broken file gives the defaults (the file is a convenience,
-// never a reason not to start); unknown keys are ignored so that newer files still load.
+// Edit > Preferences: display, brushes, autosave, the solver's limits and tolerance for meshes
+// opened without a scenario, and the key map. A missing or broken file gives the defaults (the
+// file is a convenience, never a reason not to start) and says what was wrong; unknown keys
+// are ignored so that newer files still load.
 
 #include <string>
+#include <vector>
 
+#include "key_map.h"
 #include "paint.h"
 
 namespace primo::editor {
@@ -23,10 +26,19 @@ struct Preferences {
   Falloff paint_falloff = Falloff::Constant;
   // Work.
   double autosave_minutes = 2.0;  // 0: never
-  double tolerance = 1e-8;        // the settle tolerance of a mesh opened without a scenario
+  // Solver, for a mesh opened without a scenario (a scenario keeps its own `solver`).
+  double tolerance = 1e-8;        // the settle tolerance
+  int max_iterations = 100;       // solver.max_iterations of the scenarios it saves (batch runs)
+  // How long the editor settles after an edit before it stops by itself (Continue solves
+  // on); 0: until converged.
+  double settle_seconds = 0.0;
+  KeyMap keys;
+  // What load_preferences could not use, one line each, naming the file and the key.
+  std::vector<std::string> problems;
 };
 
-// Reads `path` (default: config_folder()/preferences.json); values out of range are clamped.
+// Reads `path` (default: config_folder()/preferences.json); values out of range are clamped,
+// wrong types and unreadable keys are left at their defaults and listed in `problems`.
 Preferences load_preferences(const std::string& path = {});
 // Writes atomically; false when it could not.
 bool save_preferences(const Preferences& preferences, const std::string& path = {});

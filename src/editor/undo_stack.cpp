@@ -32,6 +32,25 @@ const EditState& UndoStack::go_to(std::size_t i) {
   return current();
 }
 
+std::vector<UndoStack::Group> UndoStack::groups() const {
+  std::vector<Group> out;
+  for (std::size_t i = 0; i < steps_.size(); ++i) {
+    if (i > 1 && steps_[i].label == steps_[i - 1].label)
+      out.back().last = i;
+    else
+      out.push_back({i, i});
+  }
+  return out;
+}
+
+UndoStack::Group UndoStack::group_of(std::size_t i) const {
+  Group g{i, i};
+  if (i == 0 || i >= steps_.size()) return g;
+  while (g.first > 1 && steps_[g.first - 1].label == steps_[i].label) --g.first;
+  while (g.last + 1 < steps_.size() && steps_[g.last + 1].label == steps_[i].label) ++g.last;
+  return g;
+}
+
 const EditState& UndoStack::undo() {
   if (can_undo()) --index_;
   return current();

@@ -36,6 +36,17 @@ class UndoStack {
   std::size_t position() const { return index_; }
   const EditState& go_to(std::size_t i);
 
+  // Maya-style grouping of the visible history: a run of consecutive steps with the same
+  // label (five drags of one handle, a series of paint strokes) is one group, shown folded,
+  // and undone at once by Edit > Undo group. Step 0 is a group of its own.
+  struct Group {
+    std::size_t first, last;  // step indices, inclusive
+    std::size_t size() const { return last - first + 1; }
+  };
+  std::vector<Group> groups() const;
+  // The group that holds step i.
+  Group group_of(std::size_t i) const;
+
  private:
   struct Step {
     std::string label;

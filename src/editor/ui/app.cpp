@@ -20,6 +20,7 @@
 #include "gl.h"
 #include "panels.h"
 #include "paths.h"
+#include "preferences_window.h"
 #include "primo/error.h"
 #include "renderer.h"
 #include "screenshot.h"
@@ -348,6 +349,7 @@ void App::frame(double now, double dt) {
       ImGui::IsPopupOpen("", ImGuiPopupFlags_AnyPopupId | ImGuiPopupFlags_AnyPopupLevel) &&
       !ImGui::GetTopMostPopupModal();
   for (const InputEvent& e : queue_) {
+    if (capture_key(e, editor_, ui_)) continue;  // Preferences > Keys waits for a new key
     if (menu_open && (e.type == InputEvent::Type::Key || e.type == InputEvent::Type::Char)) {
       if (e.type == InputEvent::Type::Key && e.key == GLFW_KEY_ESCAPE && e.action == GLFW_PRESS)
         ImGui::ClosePopupToLevel(0, true);

@@ -7,12 +7,16 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <deque>
 #include <filesystem>
 
 #include "face_colors.h"
 #include "gizmo_draw.h"
 #include "paths.h"
+#include "controls_window.h"
+#include "preferences_window.h"
 #include "session_panel.h"
+#include "widgets.h"
 
 namespace primo::editor {
 namespace fs = std::filesystem;
@@ -37,18 +41,6 @@ std::string stem_of(const std::string& path) {
 void track_edit(Editor& e, bool changed, const std::string& label) {
   if (changed) e.live_edit();
   if (ImGui::IsItemDeactivatedAfterEdit()) e.commit(label);
-}
-
-void help_marker(const char* text) {
-  ImGui::SameLine();
-  ImGui::TextDisabled("(?)");
-  if (ImGui::IsItemHovered()) {
-    ImGui::BeginTooltip();
-    ImGui::PushTextWrapPos(ImGui::GetFontSize() * 28.0f);
-    ImGui::TextUnformatted(text);
-    ImGui::PopTextWrapPos();
-    ImGui::EndTooltip();
-  }
 }
 
 // --- Tool strip ----------------------------------------------------------------------------
@@ -366,7 +358,8 @@ void handles_section(Editor& e) {
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("Frame the handle (F, with nothing selected)");
   ImGui::SameLine();
   if (ImGui::Button("Delete", ImVec2(w, 0))) e.delete_handle(s.active);
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Delete the handle (Del or X)");
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("Delete the handle (%s)", e.key_map().label(Action::DeleteHandle).c_str());
   if (ImGui::Button("Reset all handles", ImVec2(-1, 0))) e.reset_all_handles();
   ImGui::PopID();
 }
@@ -377,18 +370,46 @@ void history_section(Editor& e) {
   Document* doc = e.document();
   if (!ImGui::CollapsingHeader("History") || !doc) return;
   const UndoStack& h = doc->history;
-  const float rows = std::min(10.0f, float(h.size()));
+  const std::vector<UndoStack::Group> groups = h.groups();
+  const float rows = std::min(10.0f, float(groups.size()));
   if (!ImGui::BeginListBox("##history", ImVec2(-1, rows * ImGui::GetTextLineHeightWithSpacing() + 6)))
     return;
-  for (std::size_t i = 0; i < h.size(); ++i) {
-    ImGui::PushID(int(i));
+  auto step = [&](std::size_t i, const char* label) {
     const bool undone = i > h.position();
     if (undone) ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
-    const std::string label = i == 0 ? "(as opened)" : h.label(i);
-    if (ImGui::Selectable(label.c_str(), i == h.position())) e.go_to_history(i);
-    if (undone) ImGui::PopStyleColor();
+    ImGui::PushID(int(i));
+    if (ImGui::Selectable(label, i == h.position())) e.go_to_history(i);
     if (i == h.position() && ImGui::IsWindowAppearing()) ImGui::SetScrollHereY();
     ImGui::PopID();
+    if (undone) ImGui::PopStyleColor();
+  };
+  for (const UndoStack::Group& g : groups) {
+    if (g.size() == 1) {
+      step(g.first, g.first == 0 ? "(as opened)" : h.label(g.first).c_str());
+      continue;
+    }
+    // A run of like steps, folded as in Maya: the header goes to the run's last step.
+    const bool inside = h.position() >= g.first && h.position() <= g.last;
+    const bool undone = g.first > h.position();
+    if (undone) ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+    const std::string header = h.label(g.first) + "  x" + std::to_string(g.size());
+    ImGui::PushID(int(g.first));
+    const bool open = ImGui::TreeNodeEx("##group", ImGuiTreeNodeFlags_OpenOnArrow |
+                                           ImGuiTreeNodeFlags_SpanAvailWidth |
+                                           (inside ? ImGuiTreeNodeFlags_Selected : 0),
+                                       "%s", header.c_str());
+    if (ImGui::IsItemClicked() && !ImGui::IsItemToggledOpen()) e.go_to_history(g.last);
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("%zu steps; click to go to the last, open to pick one (%s undoes them all)",
+                        g.size(), e.key_map().label(Action::UndoGroup).c_str());
+    ImGui::PopID();
+    if (undone) ImGui::PopStyleColor();
+    if (!open) continue;
+    for (std::size_t i = g.first; i <= g.last; ++i) {
+      const std::string label = std::to_string(i - g.first + 1) + ". " + h.label(i);
+      step(i, label.c_str());
+    }
+    ImGui::TreePop();
   }
   ImGui::EndListBox();
 }
@@ -534,8 +555,14 @@ void draw_menu(Editor& e, UiState& ui) {
   if (!ImGui::BeginMainMenuBar()) return;
   ui.menu_height = ImGui::GetWindowSize().y;
   Document* doc = e.document();
+  // Shortcut labels as the user's key map has them (Edit > Preferences > Keys).
+  std::deque<std::string> labels;  // stable: ImGui reads the pointers until EndMenu
+  auto keys = [&](Action action) {
+    labels.push_back(e.key_map().label(action));
+    return labels.back().c_str();
+  };
   if (ImGui::BeginMenu("File")) {
-    if (ImGui::MenuItem("Open mesh or scenario...", "Ctrl+O")) ask_open(e, ui);
+    if (ImGui::MenuItem("Open mesh or scenario...", keys(Action::Open))) ask_open(e, ui);
     if (ImGui::BeginMenu("Open recent", !e.recent_files().entries().empty())) {
       for (const std::string& path : e.recent_files().entries())
         if (ImGui::MenuItem(path.c_str())) e.request_open(path);
@@ -543,69 +570,77 @@ void draw_menu(Editor& e, UiState& ui) {
     }
     if (ImGui::MenuItem("Open the example (Spot)")) e.request_open(default_mesh_path());
     ImGui::Separator();
-    if (ImGui::MenuItem("Save scenario", "Ctrl+S", false, doc != nullptr)) {
+    if (ImGui::MenuItem("Save scenario", keys(Action::Save), false, doc != nullptr)) {
       if (doc->scenario_path.empty())
         ask_save_scenario(e, ui);
       else
         e.save_scenario(doc->scenario_path);
     }
-    if (ImGui::MenuItem("Save scenario as...", "Ctrl+Shift+S", false, doc != nullptr)) ask_save_scenario(e, ui);
-    if (ImGui::MenuItem("Export deformed mesh...", "Ctrl+E", false, doc != nullptr)) ask_save_mesh(e, ui);
-    if (ImGui::MenuItem("Screenshot...", "F12", false, doc != nullptr)) ask_screenshot(e, ui);
+    if (ImGui::MenuItem("Save scenario as...", keys(Action::SaveAs), false, doc != nullptr)) ask_save_scenario(e, ui);
+    if (ImGui::MenuItem("Export deformed mesh...", keys(Action::Export), false, doc != nullptr)) ask_save_mesh(e, ui);
+    if (ImGui::MenuItem("Screenshot...", keys(Action::Screenshot), false, doc != nullptr)) ask_screenshot(e, ui);
     ImGui::Separator();
-    if (ImGui::MenuItem("Quit", "Ctrl+Q")) ask_quit(e, ui);
+    if (ImGui::MenuItem("Quit", keys(Action::Quit))) ask_quit(e, ui);
     ImGui::EndMenu();
   }
   if (ImGui::BeginMenu("Edit")) {
     const std::string undo = doc && doc->history.can_undo() ? "Undo " + doc->history.undo_label() : "Undo";
     const std::string redo = doc && doc->history.can_redo() ? "Redo " + doc->history.redo_label() : "Redo";
-    if (ImGui::MenuItem(undo.c_str(), "Ctrl+Z", false, doc && doc->history.can_undo())) e.undo();
-    if (ImGui::MenuItem(redo.c_str(), "Ctrl+Shift+Z", false, doc && doc->history.can_redo())) e.redo();
+    if (ImGui::MenuItem(undo.c_str(), keys(Action::Undo), false, doc && doc->history.can_undo())) e.undo();
+    if (ImGui::MenuItem(redo.c_str(), keys(Action::Redo), false, doc && doc->history.can_redo())) e.redo();
+    if (doc && doc->history.can_undo()) {
+      const UndoStack& h = doc->history;
+      const std::size_t steps = h.position() - h.group_of(h.position()).first + 1;
+      if (steps > 1) {
+        const std::string group = "Undo " + std::to_string(steps) + " x " + h.undo_label();
+        if (ImGui::MenuItem(group.c_str(), keys(Action::UndoGroup))) e.undo_group();
+      }
+    }
     if (ImGui::MenuItem("Preferences...")) ui.show_preferences = true;
     ImGui::Separator();
-    if (ImGui::MenuItem("Select all", "A")) e.select_all();
-    if (ImGui::MenuItem("Select none", "Alt+A")) e.clear_selection();
-    if (ImGui::MenuItem("Invert selection", "Ctrl+I")) e.invert_selection();
-    if (ImGui::MenuItem("Grow selection", "Ctrl+=")) e.grow_selection();
-    if (ImGui::MenuItem("Shrink selection", "Ctrl+-")) e.shrink_selection();
+    if (ImGui::MenuItem("Select all", keys(Action::SelectAll))) e.select_all();
+    if (ImGui::MenuItem("Select none", keys(Action::SelectNone))) e.clear_selection();
+    if (ImGui::MenuItem("Invert selection", keys(Action::SelectInvert))) e.invert_selection();
+    if (ImGui::MenuItem("Grow selection", keys(Action::SelectGrow))) e.grow_selection();
+    if (ImGui::MenuItem("Shrink selection", keys(Action::SelectShrink))) e.shrink_selection();
     ImGui::Separator();
     for (int axis = 0; axis < 3; ++axis) {
       bool on = e.tools.mirror[size_t(axis)];
       const std::string label = std::string("Mirror ") + axis_name(axis);
-      const std::string key = std::string("Shift+") + axis_name(axis);
-      if (ImGui::MenuItem(label.c_str(), key.c_str(), &on, doc != nullptr)) e.set_mirror(axis, on);
+      const Action action = axis == 0 ? Action::MirrorX : axis == 1 ? Action::MirrorY : Action::MirrorZ;
+      if (ImGui::MenuItem(label.c_str(), keys(action), &on, doc != nullptr)) e.set_mirror(axis, on);
     }
     ImGui::Separator();
-    if (ImGui::MenuItem("Handle from selection", "Ctrl+G")) e.make_handle(HandleMode::Pose);
-    if (ImGui::MenuItem("Fixed region from selection", "Ctrl+Shift+G")) e.make_handle(HandleMode::Fixed);
-    if (ImGui::MenuItem("Spring from selection", "Ctrl+Alt+G")) e.make_handle(HandleMode::Spring);
+    if (ImGui::MenuItem("Handle from selection", keys(Action::MakeHandle))) e.make_handle(HandleMode::Pose);
+    if (ImGui::MenuItem("Fixed region from selection", keys(Action::MakeFixedRegion))) e.make_handle(HandleMode::Fixed);
+    if (ImGui::MenuItem("Spring from selection", keys(Action::MakeSpring))) e.make_handle(HandleMode::Spring);
     const bool active = doc && doc->state.active >= 0;
-    if (ImGui::MenuItem("Reset active handle", "Alt+G", false, active)) e.reset_handle(doc->state.active);
-    if (ImGui::MenuItem("Reset all handles", "Alt+Shift+G", false, doc && !doc->state.handles.empty()))
+    if (ImGui::MenuItem("Reset active handle", keys(Action::ResetHandle), false, active)) e.reset_handle(doc->state.active);
+    if (ImGui::MenuItem("Reset all handles", keys(Action::ResetAllHandles), false, doc && !doc->state.handles.empty()))
       e.reset_all_handles();
-    if (ImGui::MenuItem("Delete active handle", "Del", false, active)) e.delete_handle(doc->state.active);
+    if (ImGui::MenuItem("Delete active handle", keys(Action::DeleteHandle), false, active)) e.delete_handle(doc->state.active);
     ImGui::EndMenu();
   }
   if (ImGui::BeginMenu("View")) {
-    if (ImGui::MenuItem("Frame all", "Home")) e.frame_all();
-    if (ImGui::MenuItem("Frame selection", "F")) e.frame_selection();
-    if (ImGui::MenuItem("Front", "Numpad 1")) e.camera().view_preset(ViewPreset::Front);
-    if (ImGui::MenuItem("Right", "Numpad 3")) e.camera().view_preset(ViewPreset::Right);
-    if (ImGui::MenuItem("Top", "Numpad 7")) e.camera().view_preset(ViewPreset::Top);
+    if (ImGui::MenuItem("Frame all", keys(Action::FrameAll))) e.frame_all();
+    if (ImGui::MenuItem("Frame selection", keys(Action::FrameSelection))) e.frame_selection();
+    if (ImGui::MenuItem("Front", keys(Action::ViewFront))) e.camera().view_preset(ViewPreset::Front);
+    if (ImGui::MenuItem("Right", keys(Action::ViewRight))) e.camera().view_preset(ViewPreset::Right);
+    if (ImGui::MenuItem("Top", keys(Action::ViewTop))) e.camera().view_preset(ViewPreset::Top);
     bool ortho = e.camera().orthographic();
-    if (ImGui::MenuItem("Orthographic", "Numpad 5", &ortho)) e.camera().set_orthographic(ortho);
+    if (ImGui::MenuItem("Orthographic", keys(Action::ToggleProjection), &ortho)) e.camera().set_orthographic(ortho);
     ImGui::Separator();
-    ImGui::MenuItem("Smooth shading", "5", &e.display.smooth);
-    ImGui::MenuItem("Wireframe", "4", &e.display.wireframe);
-    ImGui::MenuItem("Prism layer", "6", &e.display.prisms);
-    ImGui::MenuItem("Energy heat map", "7", &e.display.heat_map);
-    ImGui::MenuItem("Paint colours", "8", &e.display.paint_overlay);
+    ImGui::MenuItem("Smooth shading", keys(Action::ToggleSmooth), &e.display.smooth);
+    ImGui::MenuItem("Wireframe", keys(Action::ToggleWireframe), &e.display.wireframe);
+    ImGui::MenuItem("Prism layer", keys(Action::TogglePrisms), &e.display.prisms);
+    ImGui::MenuItem("Energy heat map", keys(Action::ToggleHeatMap), &e.display.heat_map);
+    ImGui::MenuItem("Paint colours", keys(Action::TogglePaintOverlay), &e.display.paint_overlay);
     ImGui::Separator();
-    ImGui::MenuItem("Panels", "F10", &ui.show_panels);
+    ImGui::MenuItem("Panels", keys(Action::TogglePanels), &ui.show_panels);
     ImGui::EndMenu();
   }
   if (ImGui::BeginMenu("Help")) {
-    if (ImGui::MenuItem("Controls", "F1")) ui.show_help = true;
+    if (ImGui::MenuItem("Controls", keys(Action::ShowControls))) ui.show_help = true;
     ImGui::EndMenu();
   }
   ImGui::EndMainMenuBar();
@@ -688,68 +723,6 @@ void draw_progress(Editor& e, const ViewportRect& vp) {
   ImGui::End();
 }
 
-void draw_help(UiState& ui) {
-  if (!ui.show_help) return;
-  ImGui::SetNextWindowSize(ImVec2(560, 600), ImGuiCond_FirstUseEver);
-  const ImVec2 display = ImGui::GetIO().DisplaySize;
-  ImGui::SetNextWindowPos(ImVec2(display.x * 0.5f, display.y * 0.5f), ImGuiCond_FirstUseEver, ImVec2(0.5f, 0.5f));
-  if (!ImGui::Begin("Controls", &ui.show_help)) return ImGui::End();
-  struct Row {
-    const char* keys;
-    const char* what;
-  };
-  auto table = [](const char* id, std::initializer_list<Row> rows) {
-    if (!ImGui::BeginTable(id, 2, ImGuiTableFlags_RowBg)) return;
-    ImGui::TableSetupColumn("keys", ImGuiTableColumnFlags_WidthFixed, 190);
-    for (const Row& r : rows) {
-      ImGui::TableNextRow();
-      ImGui::TableNextColumn();
-      ImGui::TextWrapped("%s", r.keys);  // long key lists wrap instead of being cut off
-      ImGui::TableNextColumn();
-      ImGui::TextWrapped("%s", r.what);
-    }
-    ImGui::EndTable();
-  };
-  ImGui::TextDisabled("View");
-  table("view", {{"Middle drag / Right drag", "orbit"},
-                 {"Shift + middle or right drag", "pan"},
-                 {"Wheel, Ctrl + middle drag", "zoom (towards the cursor)"},
-                 {"Alt + left / middle / right", "orbit / pan / zoom (Maya style)"},
-                 {"F, Numpad .", "frame the selection or active handle"},
-                 {"Home", "frame all"},
-                 {"Numpad 1 / 3 / 7 (Ctrl: opposite)", "front / right / top view"},
-                 {"Numpad 5", "perspective / orthographic"},
-                 {"4 / 5 / 6 / 7 / 8", "wireframe / flat-smooth / prisms / heat map / paint colours"}});
-  ImGui::TextDisabled("Tools");
-  table("tools", {{"Q", "select: brush (C), box (B), lasso (L); Shift adds, Ctrl removes"},
-                  {"[ and ], Ctrl + wheel", "brush radius"},
-                  {"Alt + Z", "x-ray selection (reach hidden faces)"},
-                  {"G", "drag handles in the view plane"},
-                  {"W / E", "move / rotate gizmo on the active handle; Ctrl snaps"},
-                  {"P", "paint stiffness or width; Ctrl erases"},
-                  {"Right click, Esc", "cancel the current drag or stroke"}});
-  ImGui::TextDisabled("Selection and handles");
-  table("sel", {{"A / Alt + A / Ctrl + I", "select all / none / invert"},
-                {"Ctrl + = / Ctrl + -", "grow / shrink selection"},
-                {"Ctrl + L / Ctrl + Shift + L", "select linked / linked up to sharp edges"},
-                {"Shift + X / Y / Z", "mirror selecting, painting and handles across X / Y / Z"},
-                {"Ctrl + G", "handle from selection (position + orientation)"},
-                {"Ctrl + Shift + G", "fixed region from selection"},
-                {"Ctrl + Alt + G", "spring from selection"},
-                {"Tab / Shift + Tab", "next / previous handle"},
-                {"Alt + G / Alt + Shift + G", "reset the active handle / all handles"},
-                {"Del, X", "delete the active handle"}});
-  ImGui::TextDisabled("Files and history");
-  table("files", {{"Ctrl + Z / Ctrl + Shift + Z", "undo / redo (one drag, stroke or slider change)"},
-                  {"Ctrl + O", "open a mesh or scenario (or drop a file on the window)"},
-                  {"Ctrl + S / Ctrl + Shift + S", "save the scenario / save as"},
-                  {"Ctrl + E", "export the deformed mesh (OBJ, OFF, PLY, STL, OM)"},
-                  {"F12", "screenshot (PNG)"},
-                  {"F10", "hide or show the panels"},
-                  {"Ctrl + Q", "quit"}});
-  ImGui::End();
-}
-
 void draw_error_popup(Editor& e, UiState& ui) {
   const std::string next = e.take_error_popup();
   if (!next.empty()) {
@@ -809,55 +782,6 @@ void draw_discard_question(Editor& e, UiState& ui) {
     e.answer_discard(Editor::DiscardAnswer::Cancel);
   }
   ImGui::EndPopup();
-}
-
-// Edit > Preferences: the defaults a new run starts with (preferences.h).
-void draw_preferences(Editor& e, UiState& ui) {
-  if (!ui.show_preferences) return;
-  ImGui::SetNextWindowSize(ImVec2(420, 0), ImGuiCond_Appearing);
-  if (!ImGui::Begin("Preferences", &ui.show_preferences, ImGuiWindowFlags_NoCollapse)) {
-    ImGui::End();
-    return;
-  }
-  Preferences& p = e.preferences();
-  ImGui::TextDisabled("Display");
-  ImGui::Checkbox("Smooth shading", &p.smooth);
-  ImGui::SameLine();
-  ImGui::Checkbox("Wireframe", &p.wireframe);
-  ImGui::Checkbox("Prisms", &p.prisms);
-  ImGui::SameLine();
-  ImGui::Checkbox("Energy heat map", &p.heat_map);
-  ImGui::SameLine();
-  ImGui::Checkbox("Paint colours", &p.paint_overlay);
-  ImGui::Separator();
-  ImGui::TextDisabled("Brushes");
-  float radius = float(p.brush_radius), strength = float(p.paint_strength);
-  if (ImGui::SliderFloat("Radius", &radius, 2.0f, 200.0f, "%.0f px", ImGuiSliderFlags_Logarithmic))
-    p.brush_radius = radius;
-  if (ImGui::SliderFloat("Paint strength", &strength, 0.05f, 1.0f, "%.2f")) p.paint_strength = strength;
-  int falloff = int(p.paint_falloff);
-  const char* falloffs[] = {"Constant", "Linear", "Smooth"};
-  if (ImGui::Combo("Paint falloff", &falloff, falloffs, 3)) p.paint_falloff = Falloff(falloff);
-  ImGui::Separator();
-  ImGui::TextDisabled("Work");
-  float minutes = float(p.autosave_minutes);
-  if (ImGui::SliderFloat("Autosave every", &minutes, 0.0f, 30.0f, minutes == 0 ? "never" : "%.1f min"))
-    p.autosave_minutes = minutes;
-  double lo = 1e-12, hi = 1e-3;
-  ImGui::SliderScalar("Tolerance", ImGuiDataType_Double, &p.tolerance, &lo, &hi, "%.0e",
-                      ImGuiSliderFlags_Logarithmic);
-  help_marker("The relative energy change at which the solver has settled, for meshes opened "
-              "without a scenario (a scenario keeps its own solver.tolerance).");
-  if (ImGui::Button("Use now")) e.apply_preferences();
-  ImGui::SameLine();
-  if (ImGui::Button("Save as defaults")) {
-    e.apply_preferences();
-    if (save_preferences(p))
-      e.info("Saved the preferences to " + preferences_path());
-    else
-      e.error("Could not write " + preferences_path());
-  }
-  ImGui::End();
 }
 
 // Autosaved work left by a run that did not end cleanly, offered once at the start.
@@ -936,10 +860,10 @@ void draw_ui(Editor& e, UiState& ui) {
     draw_status(e, ui);
     draw_progress(e, e.viewport());
   }
-  draw_help(ui);
+  draw_controls_window(e, ui);
   draw_error_popup(e, ui);
   draw_recovery(e, ui);
-  draw_preferences(e, ui);
+  draw_preferences_window(e, ui);
   draw_discard_question(e, ui);
   draw_file_dialog(e, ui);
 }
@@ -984,37 +908,27 @@ void ask_screenshot(Editor& e, UiState& ui) {
 
 bool handle_app_shortcut(const InputEvent& ev, Editor& e, UiState& ui) {
   if (ev.type != InputEvent::Type::Key || ev.action != GLFW_PRESS) return false;
-  const bool ctrl = ev.mods & GLFW_MOD_CONTROL, shift = ev.mods & GLFW_MOD_SHIFT;
-  switch (ev.key) {
-    case GLFW_KEY_O:
-      if (!ctrl) return false;
-      ask_open(e, ui);
-      return true;
-    case GLFW_KEY_S:
-      if (!ctrl || !e.document()) return false;
-      if (shift || e.document()->scenario_path.empty())
+  const std::optional<Action> action = e.key_map().action_for(ev.key, ev.mods);
+  if (!action) return false;
+  switch (*action) {
+    case Action::Open: ask_open(e, ui); return true;
+    case Action::Save:
+      if (!e.document()) return false;
+      if (e.document()->scenario_path.empty())
         ask_save_scenario(e, ui);
       else
         e.save_scenario(e.document()->scenario_path);
       return true;
-    case GLFW_KEY_E:
-      if (!ctrl) return false;
-      ask_save_mesh(e, ui);
+    case Action::SaveAs:
+      if (!e.document()) return false;
+      ask_save_scenario(e, ui);
       return true;
-    case GLFW_KEY_F12:
-      ask_screenshot(e, ui);
-      return true;
-    case GLFW_KEY_F1:
-      ui.show_help = !ui.show_help;
-      return true;
-    case GLFW_KEY_F10:
-      ui.show_panels = !ui.show_panels;
-      return true;
-    case GLFW_KEY_Q:
-      if (!ctrl) return false;
-      ask_quit(e, ui);
-      return true;
-    default: return false;
+    case Action::Export: ask_save_mesh(e, ui); return true;
+    case Action::Screenshot: ask_screenshot(e, ui); return true;
+    case Action::ShowControls: ui.show_help = !ui.show_help; return true;
+    case Action::TogglePanels: ui.show_panels = !ui.show_panels; return true;
+    case Action::Quit: ask_quit(e, ui); return true;
+    default: return false;  // the editor's
   }
 }
 

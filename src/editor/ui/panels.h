@@ -4,6 +4,7 @@
 // help, error popups and the file dialog. Panels call the Editor's commands; they keep no
 // document state of their own.
 
+#include <optional>
 #include <string>
 
 #include "autosave.h"
@@ -17,6 +18,12 @@ struct UiState {
   bool show_panels = true;  // false: the viewport fills the window (clean screenshots)
   bool show_help = false;
   bool show_preferences = false;
+  // Edit > Preferences > Keys: the command waiting for its new key (the next key pressed).
+  struct KeyCapture {
+    Action action;
+    bool replace;  // the key replaces the command's keys; false: one more key
+  };
+  std::optional<KeyCapture> key_capture;
   FileDialog dialog;
   enum class Purpose {
     None, Open, SaveMesh, SaveScenario, Screenshot,
