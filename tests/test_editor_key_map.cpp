@@ -16,6 +16,7 @@
 #include "headless_imgui.h"
 #include "key_map.h"
 #include "panels.h"
+#include "preferences_window.h"
 #include "preferences.h"
 #include "primo/mesh_generators.h"
 #include "test_support.h"
@@ -230,4 +231,31 @@ TEST(EditorKeys, UndoGroupTakesBackARunOfDragsOfOneHandle) {
   EXPECT_LT(primo::test::max_distance(before, e.positions()), 1e-6 * s.diagonal());
   s.key(GLFW_KEY_Z, GLFW_MOD_CONTROL | GLFW_MOD_SHIFT);
   EXPECT_EQ(h.position(), steps) << "redo brings the first drag back";
+}
+
+TEST(EditorKeys, PreferencesTakeTheNextKeyPressedForACommand) {
+  Editor e;
+  UiState ui;
+  ui.key_capture = UiState::KeyCapture{Action::FrameAll, true};
+  auto press = [&](int key, int mods) {
+    return capture_key(InputEvent::key_event(key, GLFW_PRESS, mods), e, ui);
+  };
+  EXPECT_TRUE(press(GLFW_KEY_LEFT_SHIFT, GLFW_MOD_SHIFT)) << "a modifier waits for the key";
+  ASSERT_TRUE(ui.key_capture);
+  EXPECT_TRUE(press(GLFW_KEY_A, GLFW_MOD_SHIFT));
+  EXPECT_FALSE(ui.key_capture);
+  EXPECT_EQ(e.key_map().label(Action::FrameAll), "Shift+A");
+  // Adding a key that another command has takes it from there, and says so.
+  ui.key_capture = UiState::KeyCapture{Action::FrameAll, false};
+  EXPECT_TRUE(press(GLFW_KEY_A, 0));
+  EXPECT_EQ(e.key_map().label(Action::FrameAll), "Shift+A, A");
+  EXPECT_EQ(e.key_map().label(Action::SelectAll), "");
+  EXPECT_NE(e.current_message()->text.find("it was 'select all', which has no key now"),
+            std::string::npos)
+      << e.current_message()->text;
+  // Esc cancels; nothing else is taken once the capture is over.
+  ui.key_capture = UiState::KeyCapture{Action::Undo, true};
+  EXPECT_TRUE(press(GLFW_KEY_ESCAPE, 0));
+  EXPECT_EQ(e.key_map().label(Action::Undo), "Ctrl+Z");
+  EXPECT_FALSE(press(GLFW_KEY_B, 0));
 }

@@ -82,12 +82,15 @@ void keys_section(Editor& e, UiState& ui) {
   if (ui.key_capture)
     ImGui::TextColored(ImVec4(1.0f, 0.8f, 0.3f, 1.0f), "Press the new key for '%s' (Esc cancels)",
                        action_info(ui.key_capture->action).label);
+  // The list takes the height left above the buttons, and scrolls.
+  const float below = ImGui::GetFrameHeightWithSpacing() + ImGui::GetStyle().ItemSpacing.y * 2;
+  const float height = std::max(120.0f, ImGui::GetContentRegionAvail().y - below);
   if (!ImGui::BeginTable("keys", 3, ImGuiTableFlags_RowBg | ImGuiTableFlags_ScrollY,
-                         ImVec2(0, 260)))
+                         ImVec2(0, height)))
     return;
   ImGui::TableSetupColumn("command", ImGuiTableColumnFlags_WidthStretch);
   ImGui::TableSetupColumn("keys", ImGuiTableColumnFlags_WidthFixed, 150);
-  ImGui::TableSetupColumn("change", ImGuiTableColumnFlags_WidthFixed, 118);
+  ImGui::TableSetupColumn("change", ImGuiTableColumnFlags_WidthFixed, 170);
   for (const ActionInfo& a : all_actions()) {
     const std::string label = keys.label(a.action);
     if (!filter.empty() && !contains_ignoring_case(a.label, filter) &&
@@ -127,7 +130,9 @@ void draw_preferences_window(Editor& e, UiState& ui) {
     ui.key_capture.reset();
     return;
   }
-  ImGui::SetNextWindowSize(ImVec2(460, 0), ImGuiCond_Appearing);
+  const ImVec2 display = ImGui::GetIO().DisplaySize;
+  ImGui::SetNextWindowPos(ImVec2(60, 40), ImGuiCond_Appearing);
+  ImGui::SetNextWindowSize(ImVec2(580, std::min(760.0f, display.y - 60)), ImGuiCond_Appearing);
   if (!ImGui::Begin("Preferences", &ui.show_preferences, ImGuiWindowFlags_NoCollapse)) {
     ImGui::End();
     return;
