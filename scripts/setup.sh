@@ -7,7 +7,7 @@ packages=(
   # toolchain
   build-essential cmake ninja-build pkg-config ccache
   # core library
-  libopenmesh-dev libeigen3-dev libsuitesparse-dev libopenblas0-pthread
+  libopenmesh-dev libeigen3-dev libsuitesparse-dev libopenblas0-pthread libtbb-dev
   # command line and file formats
   nlohmann-json3-dev libcli11-dev
   # quality measurement: exact self-intersections and the ARAP peers (primo_quality only)

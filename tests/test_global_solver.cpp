@@ -9,7 +9,7 @@
 #include <Eigen/Geometry>
 
 #include "primo/deformer.h"
-#include "primo/two_threads.h"
+#include "primo/parallel.h"
 #include "test_support.h"
 
 using namespace primo;
@@ -111,13 +111,13 @@ TEST(GlobalSolver, AReusedFactorTurnsWithTheBodies) {
   EXPECT_GT(system.energy(from_unturned), system.energy(from_fresh));
 }
 
-TEST(GlobalSolver, AReusedStepsGradientOnTwoThreadsIsTheFullAssemblysGradient) {
-  // Above kSecondThreadFrom couplings the gradient of a reused step is summed on two threads.
+TEST(GlobalSolver, AReusedStepsGradientInChunksIsTheFullAssemblysGradient) {
+  // Above two grains of couplings the gradient of a reused step is summed in chunks.
   // Reusing the factor of the very state it starts from, the step must be the fresh one,
   // whose gradient comes from the one-thread full assembly.
   Deformer d = bent_cylinder(100, 104);
   const RigidSystem& system = d.system();
-  ASSERT_GE(system.couplings.size(), kSecondThreadFrom);
+  ASSERT_GE(system.couplings.size(), 2 * kParallelGrain);
   const std::vector<BodyState> start = d.body_states();
 
   GlobalSolver reused(system, GlobalSolver::Factorization::SupernodalOneThread);

@@ -151,27 +151,39 @@ TEST(ClusterHierarchy, AggregatesAreConnectedAndCompact) {
   }
 }
 
-TEST(SweepPlan, HalvesDoNotTouchAndCoverEveryMovableBody) {
+TEST(SweepPlan, PartsOfAColourDoNotTouchAndCoverEveryMovableBody) {
   const PosedMesh s = bent_cylinder();
   Deformer d(s.mesh, PrismParameters{}, s.handles);
-  const RigidSystem& sys = d.system();
-  SweepPlan plan = plan_sweep(sys);
-  // 2,400 faces is below the threshold for threads: a single serial list.
-  EXPECT_TRUE(plan.half[1].empty());
-  const Mesh big = make_cylinder(0.25, 2.0, 80, 120, FaceShape::Quads);
+  SweepPlan plan = plan_sweep(d.system());
+  // 2,400 faces is below the size for parts: a single serial list.
+  EXPECT_EQ(plan.parts.size(), 1u);
+  const Mesh big = make_cylinder(0.25, 2.0, 80, 120, FaceShape::Quads);  // 9,600 bodies
   Deformer db(big, PrismParameters{}, {});
-  plan = plan_sweep(db.system());
-  ASSERT_FALSE(plan.half[1].empty());
-  std::vector<int> side(db.system().n_bodies(), -1);
-  for (int h = 0; h < 2; ++h)
-    for (int b : plan.half[h]) side[b] = h;
-  for (const auto& c : db.system().couplings) {
-    if (side[c.body[0]] >= 0 && side[c.body[1]] >= 0) {
-      EXPECT_EQ(side[c.body[0]], side[c.body[1]]);
+  const RigidSystem& sys = db.system();
+  plan = plan_sweep(sys);
+  ASSERT_EQ(plan.parts.size(), 4u) << "about 2,000 bodies a part";
+  std::vector<int> part_of(sys.n_bodies(), -1), colour_of(plan.parts.size(), -1);
+  size_t bodies = 0;
+  for (size_t p = 0; p < plan.parts.size(); ++p) {
+    bodies += plan.parts[p].size();
+    EXPECT_TRUE(std::is_sorted(plan.parts[p].begin(), plan.parts[p].end()));
+    for (int b : plan.parts[p]) {
+      EXPECT_EQ(part_of[b], -1) << "body " << b << " in two parts";
+      part_of[b] = int(p);
     }
   }
-  EXPECT_EQ(plan.half[0].size() + plan.half[1].size() + plan.cut.size(), size_t(db.system().n_bodies()));
-  EXPECT_LT(plan.cut.size() * 20, plan.half[0].size());
+  EXPECT_EQ(bodies, size_t(sys.n_bodies()));
+  for (size_t c = 0; c < plan.colours.size(); ++c)
+    for (int p : plan.colours[c]) colour_of[p] = int(c);
+  EXPECT_LE(plan.colours.size(), 3u) << "a tube cut in four rings needs two colours";
+  for (const auto& c : sys.couplings) {
+    const int p0 = part_of[c.body[0]], p1 = part_of[c.body[1]];
+    if (p0 != p1) {
+      EXPECT_NE(colour_of[p0], colour_of[p1]) << "coupled parts of one colour";
+    }
+  }
+  // Not parallel: one part.
+  EXPECT_EQ(plan_sweep(sys, false).parts.size(), 1u);
 }
 
 TEST(HierarchicalSolver, MatchesTheFlatSolverOnABentCylinder) {

@@ -17,12 +17,13 @@ BodyState local_match(const RigidSystem& system, const std::vector<BodyState>& s
 // One Gauss-Seidel sweep over all bodies in index order.
 void local_sweep(const RigidSystem& system, std::vector<BodyState>& state);
 
-// A Gauss-Seidel sweep split over two threads: the bodies are cut in two spatial halves at
-// the median of their rest centres along the longest axis; each thread matches the interior
-// bodies of its half (whose neighbours all lie in that half, so the threads never touch each
-// other's state), then the bodies on the cut are matched serially. It is a Gauss-Seidel
-// ordering, so its fixed points are those of `local_sweep`; it needs one join per sweep and
-// no spinning barrier, which matters on two cores shared with rendering.
+// A Gauss-Seidel sweep over every core, with the same result on any number of threads. The
+// movable bodies are cut into parts by recursive bisection of their rest centres along the
+// longest axis; how many parts depends on the number of bodies alone (about 2,000 bodies a
+// part, at most 128). Parts are coloured so that no two parts of a colour have coupled bodies:
+// the parts of one colour are matched in parallel (none reads what another writes), colour
+// after colour. It is a Gauss-Seidel ordering, so its fixed points are those of `local_sweep`;
+// a sweep needs one wait per colour (four to six on a surface) and no spinning.
 //
 // The plan also holds each body's joints packed for matching: the state-independent parts of
 // Horn's sums, contiguous so that a sweep streams them instead of gathering whole couplings.
@@ -30,8 +31,8 @@ void local_sweep(const RigidSystem& system, std::vector<BodyState>& state);
 // summed into one: on a coarse level, where a cluster border is crossed by several fine
 // joints, a match then costs what the number of neighbouring clusters requires.
 struct SweepPlan {
-  std::vector<int> half[2];
-  std::vector<int> cut;
+  std::vector<std::vector<int>> parts;    // each part's bodies, in index order
+  std::vector<std::vector<int>> colours;  // each colour's parts, in index order
   struct PackedJoint {
     int other;         // the body on the other side
     double weight;     // sums over the joints between the two bodies:

@@ -7,10 +7,19 @@
 
 #include "commands.h"
 #include "primo/error.h"
+#include "primo/parallel.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"PriMo: coupled prisms for intuitive surface modeling"};
   app.require_subcommand(0, 1);
+  // One option for every command (deform, replay, bench, edit...): given after the command's
+  // name too, since the commands fall through to it.
+  int threads = 0;
+  app.add_option("--threads", threads,
+                 "Threads the solver may use (default 0: every core). Results are the same "
+                 "on any number of threads.")
+      ->check(CLI::Range(0, 4096));
+  app.fallthrough();
   const std::vector<primo::app::Command> commands = {
       primo::app::register_edit(app), primo::app::register_deform(app),
       primo::app::register_generate(app), primo::app::register_bench(app),
@@ -22,6 +31,7 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
   }
+  primo::set_thread_count(threads);
   for (const auto& [sub, run] : commands) {
     if (!sub->parsed()) continue;
     try {

@@ -3,7 +3,7 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Geometry>
 
-#include "primo/two_threads.h"
+#include "primo/parallel.h"
 
 namespace primo {
 namespace {
@@ -42,7 +42,7 @@ std::vector<BodyState> AndersonAcceleration::propose(const std::vector<BodyState
   const size_t n_bodies = image.size(), n = n_bodies * kEmbedding;
   // Image g = G(x) and residual f = G(x) - x, embedded.
   std::vector<double> g(n), f(n);
-  on_two_threads(n_bodies, kSecondThreadFrom, [&](size_t begin, size_t end) {
+  parallel_chunks(n_bodies, kParallelGrain, [&](size_t begin, size_t end) {
     double x[kEmbedding];
     const bool aligned = last_image_.size() == n;
     for (size_t b = begin; b < end; ++b) {
@@ -75,7 +75,7 @@ std::vector<BodyState> AndersonAcceleration::propose(const std::vector<BodyState
     std::vector<float>& dg = delta_image_.back();
     dr.resize(n);
     dg.resize(n);
-    on_two_threads(n, kSecondThreadFrom * kEmbedding, [&](size_t begin, size_t end) {
+    parallel_chunks(n, kParallelGrain * kEmbedding, [&](size_t begin, size_t end) {
       for (size_t i = begin; i < end; ++i) {
         dr[i] = float(f[i] - double(last_residual_[i]));
         dg[i] = float(g[i] - last_image_[i]);
@@ -90,9 +90,12 @@ std::vector<BodyState> AndersonAcceleration::propose(const std::vector<BodyState
     // One pass for the Gram matrix's new column (the others are kept from earlier calls) and
     // the right-hand side dF^T f of the least-squares problem min |f - dF theta|.
     const std::vector<float>& newest = delta_residual_.back();
-    double sums[2][2 * 64] = {};  // per thread: m column entries, then m right-hand sides
-    on_two_threads(n, kSecondThreadFrom * kEmbedding, [&](size_t begin, size_t end) {
-      double* s = sums[begin == 0 ? 0 : 1];
+    // Per chunk: m column entries, then m right-hand sides; chunks added in order.
+    const size_t chunks = chunk_count(n, kParallelGrain * kEmbedding);
+    std::vector<double> sums(chunks * 2 * size_t(m), 0.0);
+    parallel_tasks(chunks, [&](size_t k) {
+      const size_t begin = chunk_begin(n, chunks, k), end = chunk_begin(n, chunks, k + 1);
+      double* s = &sums[k * 2 * size_t(m)];
       for (int a = 0; a < m; ++a) {
         const float* da = delta_residual_[a].data();
         double column = 0.0, rhs = 0.0;
@@ -107,15 +110,20 @@ std::vector<BodyState> AndersonAcceleration::propose(const std::vector<BodyState
     gram_.conservativeResize(m, m);
     Eigen::VectorXd rhs(m);
     for (int a = 0; a < m; ++a) {
-      gram_(a, m - 1) = gram_(m - 1, a) = sums[0][a] + sums[1][a];
-      rhs[a] = sums[0][m + a] + sums[1][m + a];
+      double column = 0.0, right = 0.0;
+      for (size_t k = 0; k < chunks; ++k) {
+        column += sums[k * 2 * size_t(m) + size_t(a)];
+        right += sums[k * 2 * size_t(m) + size_t(m + a)];
+      }
+      gram_(a, m - 1) = gram_(m - 1, a) = column;
+      rhs[a] = right;
     }
     // Lightly regularized: the columns become nearly dependent as the iteration converges.
     Eigen::MatrixXd regularized = gram_;
     regularized.diagonal().array() += 1e-10 * gram_.trace() / m + 1e-300;
     const Eigen::VectorXd theta = regularized.ldlt().solve(rhs);
     if (theta.allFinite()) {
-      on_two_threads(n_bodies, kSecondThreadFrom, [&](size_t begin, size_t end) {
+      parallel_chunks(n_bodies, kParallelGrain, [&](size_t begin, size_t end) {
         double x[kEmbedding];
         for (size_t b = begin; b < end; ++b) {
           const size_t at = b * kEmbedding;

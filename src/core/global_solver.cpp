@@ -16,7 +16,7 @@
 #include <dlfcn.h>
 
 #include "primo/horn.h"
-#include "primo/two_threads.h"
+#include "primo/parallel.h"
 
 namespace primo {
 namespace {
@@ -181,7 +181,7 @@ struct GlobalSolver::Impl {
   std::vector<Mat6> diag, off;
   std::vector<Mat3> second;
   std::vector<Vec6> grad;
-  std::vector<Vec6> second_half_grad;  // assemble_gradient's second thread
+  std::vector<std::vector<Vec6>> chunk_grad;  // assemble_gradient's chunks after the first
 
   SparseMatrix matrix;
   std::vector<std::array<int, 36>> diag_slots, off_slots;
@@ -373,8 +373,8 @@ void GlobalSolver::Impl::assemble(const std::vector<BodyState>& state) {
 void GlobalSolver::Impl::assemble_gradient(const std::vector<BodyState>& state) {
   // As FeatureBlocks::add, gradient rows only: w r for a point's translation, w y x r for
   // each rotation. A reused factor needs nothing else, so on the hierarchy's coarsest level
-  // this runs twice a cycle: on two threads, the second half of the couplings into its own
-  // gradient, added at the end (a fixed split, so the sums do not depend on timing).
+  // this runs twice a cycle: in parallel, each chunk of couplings into its own gradient,
+  // added at the end (chunks fixed by the size, so the sums do not depend on the threads).
   auto add_couplings = [&](size_t begin, size_t end, std::vector<Vec6>& g) {
     for (size_t ci = begin; ci < end; ++ci) {
       const RigidSystem::Coupling& c = sys.couplings[ci];
@@ -392,13 +392,18 @@ void GlobalSolver::Impl::assemble_gradient(const std::vector<BodyState>& state) 
     }
   };
   std::fill(grad.begin(), grad.end(), Vec6::Zero());
-  const bool split = sys.couplings.size() >= kSecondThreadFrom;
-  if (split) second_half_grad.assign(grad.size(), Vec6::Zero());
-  on_two_threads(sys.couplings.size(), kSecondThreadFrom, [&](size_t begin, size_t end) {
-    add_couplings(begin, end, begin == 0 ? grad : second_half_grad);
+  // At most 8 chunks: each but the first sums into a gradient of its own, so more would cost
+  // more memory traffic than they save.
+  const size_t n = sys.couplings.size();
+  const size_t chunks = chunk_count(n, std::max(kParallelGrain, n / 8));
+  chunk_grad.resize(chunks - 1);
+  parallel_tasks(chunks, [&](size_t k) {
+    std::vector<Vec6>& g = k == 0 ? grad : chunk_grad[k - 1];
+    if (k > 0) g.assign(grad.size(), Vec6::Zero());
+    add_couplings(chunk_begin(n, chunks, k), chunk_begin(n, chunks, k + 1), g);
   });
-  if (split)
-    for (size_t b = 0; b < grad.size(); ++b) grad[b] += second_half_grad[b];
+  for (const std::vector<Vec6>& g : chunk_grad)  // in chunk order: the same bits on any threads
+    for (size_t b = 0; b < grad.size(); ++b) grad[b] += g[b];
   for (const RigidSystem::Spring& s : sys.springs) {
     if (!active[s.body]) continue;
     const BodyState& st = state[s.body];

@@ -6,7 +6,7 @@
 #include <limits>
 
 #include "primo/horn.h"
-#include "primo/two_threads.h"
+#include "primo/parallel.h"
 
 namespace primo {
 namespace {
@@ -209,7 +209,7 @@ void HierarchicalSolver::restrict_level(Level& level, const RigidSystem& finer,
     }
     level.correction[c] = {Mat3::Identity(), body.rest_center};
   }
-  on_two_threads(sys.couplings.size(), kSecondThreadFrom, [&](size_t begin, size_t end) {
+  parallel_chunks(sys.couplings.size(), kParallelGrain, [&](size_t begin, size_t end) {
     for (size_t k = begin; k < end; ++k) {
       const RigidSystem::Coupling& fc = finer.couplings[level.coupling_parent[k]];
       RigidSystem::Coupling& c = sys.couplings[k];
@@ -237,7 +237,7 @@ void HierarchicalSolver::restrict_level(Level& level, const RigidSystem& finer,
 
 void HierarchicalSolver::prolong_level(const Level& level, std::vector<BodyState>& finer_state) const {
   const RigidSystem& sys = level.system;
-  on_two_threads(finer_state.size(), kSecondThreadFrom, [&](size_t begin, size_t end) {
+  parallel_chunks(finer_state.size(), kParallelGrain, [&](size_t begin, size_t end) {
     for (size_t b = begin; b < end; ++b) {
       const int c = level.parent_of[b];
       const BodyState& corr = level.correction[c];

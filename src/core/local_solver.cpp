@@ -1,7 +1,7 @@
 #include "primo/local_solver.h"
 
 #include "primo/horn.h"
-#include "primo/two_threads.h"
+#include "primo/parallel.h"
 
 #include <Eigen/Geometry>
 
@@ -152,6 +152,73 @@ void local_sweep(const RigidSystem& system, std::vector<BodyState>& state) {
   for (int b = 0; b < system.n_bodies(); ++b) state[b] = local_match(system, state, b);
 }
 
+namespace {
+
+// Bodies a part of a sweep should have: a part is one task, and a task needs about a
+// millisecond of matching to pay for itself.
+constexpr size_t kBodiesPerPart = 2000;
+constexpr int kMaxPartLevels = 7;  // at most 2^7 = 128 parts
+
+// Splits `bodies` in two at the median of their rest centres along the longest axis of their
+// bounding box, `levels` times over.
+void bisect(const RigidSystem& system, std::vector<int> bodies, int levels,
+            std::vector<std::vector<int>>& parts) {
+  if (levels == 0 || bodies.size() < 2) {
+    std::sort(bodies.begin(), bodies.end());
+    parts.push_back(std::move(bodies));
+    return;
+  }
+  Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  for (int b : bodies) {
+    lo = lo.cwiseMin(system.bodies[b].rest_center);
+    hi = hi.cwiseMax(system.bodies[b].rest_center);
+  }
+  int axis = 0;
+  (hi - lo).maxCoeff(&axis);
+  const size_t middle = bodies.size() / 2;
+  // Ties broken by index, so the split never depends on the sort's whims.
+  std::nth_element(bodies.begin(), bodies.begin() + middle, bodies.end(), [&](int a, int b) {
+    const double ca = system.bodies[a].rest_center[axis], cb = system.bodies[b].rest_center[axis];
+    return ca < cb || (ca == cb && a < b);
+  });
+  std::vector<int> upper(bodies.begin() + middle, bodies.end());
+  bodies.resize(middle);
+  bisect(system, std::move(bodies), levels - 1, parts);
+  bisect(system, std::move(upper), levels - 1, parts);
+}
+
+// Greedy colouring of the parts' adjacency (two parts touch when a coupling joins them), in
+// part order: the smallest colour no earlier neighbour has.
+std::vector<std::vector<int>> colour_parts(const RigidSystem& system,
+                                           const std::vector<std::vector<int>>& parts) {
+  std::vector<int> part_of(size_t(system.n_bodies()), -1);
+  for (size_t p = 0; p < parts.size(); ++p)
+    for (int b : parts[p]) part_of[size_t(b)] = int(p);
+  std::vector<std::vector<int>> touching(parts.size());
+  for (const RigidSystem::Coupling& c : system.couplings) {
+    const int p0 = part_of[size_t(c.body[0])], p1 = part_of[size_t(c.body[1])];
+    if (p0 >= 0 && p1 >= 0 && p0 != p1) {
+      touching[size_t(p0)].push_back(p1);
+      touching[size_t(p1)].push_back(p0);
+    }
+  }
+  std::vector<int> colour(parts.size(), -1);
+  std::vector<std::vector<int>> colours;
+  for (size_t p = 0; p < parts.size(); ++p) {
+    std::vector<char> used(colours.size() + 1, 0);
+    for (int q : touching[p])
+      if (colour[size_t(q)] >= 0) used[size_t(colour[size_t(q)])] = 1;
+    int c = 0;
+    while (used[size_t(c)]) ++c;
+    colour[p] = c;
+    if (c == int(colours.size())) colours.emplace_back();
+    colours[size_t(c)].push_back(int(p));
+  }
+  return colours;
+}
+
+}  // namespace
+
 SweepPlan plan_sweep(const RigidSystem& system, bool parallel) {
   SweepPlan plan;
   const int n = system.n_bodies();
@@ -159,34 +226,11 @@ SweepPlan plan_sweep(const RigidSystem& system, bool parallel) {
   for (int b = 0; b < n; ++b)
     if (system.bodies[b].kind != BodyKind::Fixed) movable.push_back(b);
   refresh_sweep_plan(plan, system);
-  // Below this size a thread costs more than it saves.
-  if (!parallel || movable.size() < 4000) {
-    plan.half[0] = movable;
-    return plan;
-  }
-  Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
-  for (int b : movable) {
-    lo = lo.cwiseMin(system.bodies[b].rest_center);
-    hi = hi.cwiseMax(system.bodies[b].rest_center);
-  }
-  int axis = 0;
-  (hi - lo).maxCoeff(&axis);
-  std::vector<int> sorted = movable;
-  const size_t middle = sorted.size() / 2;
-  std::nth_element(sorted.begin(), sorted.begin() + middle, sorted.end(), [&](int a, int b) {
-    return system.bodies[a].rest_center[axis] < system.bodies[b].rest_center[axis];
-  });
-  std::vector<int> side(n, -1);
-  for (size_t i = 0; i < sorted.size(); ++i) side[sorted[i]] = i < middle ? 0 : 1;
-  for (int b : movable) {
-    bool interior = true;
-    for (int k = system.coupling_begin[b]; k < system.coupling_begin[b + 1] && interior; ++k) {
-      const auto& c = system.couplings[system.body_couplings[k].first];
-      const int other = c.body[1 - system.body_couplings[k].second];
-      interior = side[other] == side[b] || side[other] < 0;  // fixed neighbours never change
-    }
-    (interior ? plan.half[side[b]] : plan.cut).push_back(b);
-  }
+  int levels = 0;
+  while (parallel && levels < kMaxPartLevels && (movable.size() >> (levels + 1)) >= kBodiesPerPart)
+    ++levels;
+  bisect(system, std::move(movable), levels, plan.parts);
+  plan.colours = colour_parts(system, plan.parts);
   return plan;
 }
 
@@ -223,7 +267,7 @@ void refresh_sweep_plan(SweepPlan& plan, const RigidSystem& system) {
     build_joint_slots(plan, system);
   plan.joint_weight.resize(n);
   plan.joint_source.resize(n);
-  on_two_threads(size_t(n), kSecondThreadFrom, [&](size_t begin, size_t end) {
+  parallel_chunks(size_t(n), kParallelGrain, [&](size_t begin, size_t end) {
     for (int b = int(begin); b < int(end); ++b) {
       for (int s = plan.joint_begin[b]; s < plan.joint_begin[b + 1]; ++s) {
         SweepPlan::PackedJoint& j = plan.joints[s];  // `other` is set once, with the slots
@@ -253,17 +297,11 @@ void refresh_sweep_plan(SweepPlan& plan, const RigidSystem& system) {
 
 void planned_sweep(const RigidSystem& system, const SweepPlan& plan,
                    std::vector<BodyState>& state, double relaxation) {
-  auto sweep = [&](const std::vector<int>& bodies) {
-    for (int b : bodies) state[b] = planned_match(system, plan, state, b, relaxation);
-  };
-  if (plan.half[1].empty()) {
-    sweep(plan.half[0]);
-  } else {
-    std::thread other([&] { sweep(plan.half[1]); });
-    sweep(plan.half[0]);
-    other.join();
-  }
-  sweep(plan.cut);
+  for (const std::vector<int>& colour : plan.colours)
+    parallel_tasks(colour.size(), [&](size_t k) {
+      for (int b : plan.parts[size_t(colour[k])])
+        state[size_t(b)] = planned_match(system, plan, state, b, relaxation);
+    });
 }
 
 }  // namespace primo

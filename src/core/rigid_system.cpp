@@ -1,7 +1,7 @@
 #include "primo/rigid_system.h"
 
 #include "primo/error.h"
-#include "primo/two_threads.h"
+#include "primo/parallel.h"
 
 namespace primo {
 namespace {
@@ -48,12 +48,8 @@ double RigidSystem::energy(const std::vector<BodyState>& state) const {
       e += coupling_energy(couplings[i], state[couplings[i].body[0]], state[couplings[i].body[1]]);
     return e;
   };
-  // Large systems on two threads (a fixed split, so the sum is deterministic).
-  double half[2] = {0.0, 0.0};
-  on_two_threads(couplings.size(), 40000, [&](size_t begin, size_t end) {
-    half[begin == 0 ? 0 : 1] = sum(begin, end);
-  });
-  double e = internal_energy + half[0] + half[1];
+  // Chunks fixed by the size, summed in order: the same bits on any number of threads.
+  double e = internal_energy + parallel_sum(couplings.size(), 2 * kParallelGrain, 0.0, sum);
   for (const Spring& s : springs)
     e += spring_energy(s, state[s.body]);
   return e;

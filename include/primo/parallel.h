@@ -1,0 +1,62 @@
+#pragma once
+// Parallel loops that give the same result on any number of threads. Work is cut into chunks
+// whose boundaries depend only on the size of the work, never on the number of threads, and
+// whatever is summed over chunks is summed in chunk order; the chunks run on one persistent
+// pool of worker threads (oneTBB's), as many as the machine has unless set_thread_count says
+// otherwise. So a run on a 32-core workstation and one on a 2-core laptop produce the same
+// bits, and `--threads 1` is a faithful way to measure the serial cost.
+
+#include <cstddef>
+#include <functional>
+#include <vector>
+
+namespace primo {
+
+// Items (bodies, joints) per chunk below which a loop is not split: per-item work of a few
+// hundred flops needs about this many to pay for a task.
+inline constexpr size_t kParallelGrain = 8192;
+
+// The threads every parallel loop may use: 0 (the default) all hardware threads. Affects
+// speed only. Not to be called while a parallel loop runs.
+void set_thread_count(int threads);
+// What parallel loops use now (at least 1).
+int thread_count();
+
+// The chunks [0, n) is cut into: `chunks` consecutive ranges of nearly equal size, at most
+// max(1, n / grain) of them and at most 256.
+size_t chunk_count(size_t n, size_t grain);
+inline size_t chunk_begin(size_t n, size_t chunks, size_t k) { return n * k / chunks; }
+
+// Runs task(k) for k in [0, count), in parallel; returns when all have run. Tasks must not
+// write what another task reads or writes.
+void parallel_tasks(size_t count, const std::function<void(size_t)>& task);
+
+// Calls body(begin, end) on the chunks of [0, n) (one call on the calling thread when n is
+// below two grains).
+template <class Body>
+void parallel_chunks(size_t n, size_t grain, Body&& body) {
+  const size_t chunks = chunk_count(n, grain);
+  if (chunks <= 1) {
+    if (n > 0) body(size_t(0), n);
+    return;
+  }
+  parallel_tasks(chunks, [&](size_t k) {
+    body(chunk_begin(n, chunks, k), chunk_begin(n, chunks, k + 1));
+  });
+}
+
+// sum over the chunks of [0, n) of part(begin, end), added in chunk order.
+template <class T, class Part>
+T parallel_sum(size_t n, size_t grain, T zero, Part&& part) {
+  const size_t chunks = chunk_count(n, grain);
+  if (chunks <= 1) return n > 0 ? T(zero + part(size_t(0), n)) : zero;
+  std::vector<T> partial(chunks, zero);
+  parallel_tasks(chunks, [&](size_t k) {
+    partial[k] = part(chunk_begin(n, chunks, k), chunk_begin(n, chunks, k + 1));
+  });
+  T total = zero;
+  for (const T& p : partial) total = total + p;
+  return total;
+}
+
+}  // namespace primo

@@ -1,0 +1,85 @@
+// Parallel loops and solvers give the same bits on any number of threads: chunks depend on the
+// size of the work only, sums are added in chunk order, and a sweep's parts are coloured.
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+
+#include "primo/deformer.h"
+#include "primo/local_solver.h"
+#include "primo/mesh.h"
+#include "primo/parallel.h"
+#include "test_support.h"
+
+using namespace primo;
+
+namespace {
+
+// Restores the default (every core) when a test ends, whatever it set.
+struct ThreadCount {
+  explicit ThreadCount(int n) { set_thread_count(n); }
+  ~ThreadCount() { set_thread_count(0); }
+};
+
+bool same_bits(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(Vec3)) == 0;
+}
+
+}  // namespace
+
+TEST(Parallel, ChunksDependOnTheSizeAloneAndSumsOnNoThreadCount) {
+  EXPECT_EQ(chunk_count(0, 100), 1u);
+  EXPECT_EQ(chunk_count(199, 100), 1u);
+  EXPECT_EQ(chunk_count(1000, 100), 10u);
+  EXPECT_EQ(chunk_count(size_t(1) << 40, 100), 256u);
+  // A sum whose rounding depends on how it is split: the same bits for every thread count.
+  const size_t n = 300000;
+  auto term = [](size_t i) { return 1.0 / double(i + 1) * (i % 3 == 0 ? -1e3 : 1.0); };
+  std::vector<double> sums;
+  for (int threads : {1, 2, 3, 8}) {
+    ThreadCount count(threads);
+    EXPECT_EQ(thread_count(), threads);
+    sums.push_back(parallel_sum(n, 1000, 0.0, [&](size_t b, size_t e) {
+      double s = 0.0;
+      for (size_t i = b; i < e; ++i) s += term(i);
+      return s;
+    }));
+    std::vector<int> hits(n, 0);
+    parallel_chunks(n, 1000, [&](size_t b, size_t e) {
+      for (size_t i = b; i < e; ++i) ++hits[i];
+    });
+    EXPECT_EQ(std::count(hits.begin(), hits.end(), 1), std::ptrdiff_t(n)) << "each item once";
+  }
+  for (double s : sums) EXPECT_EQ(s, sums.front());
+}
+
+TEST(Parallel, SolvesGiveIdenticalVerticesOnOneTwoThreeAndEightThreads) {
+  // 19,200 quads: eight sweep parts on the finest level, gradient and energy in chunks.
+  const test::BentCylinder c = test::bent_cylinder(96, 200, 120.0);
+  ASSERT_GE(c.mesh.n_faces(), 16000u);
+  for (const SolveMethod method : {SolveMethod::Hierarchical, SolveMethod::Global}) {
+    std::vector<std::vector<Vec3>> results;
+    for (int threads : {1, 2, 3, 8}) {
+      ThreadCount count(threads);
+      Deformer d(c.mesh, PrismParameters{}, c.handles);
+      SolveOptions o;
+      o.method = method;
+      o.max_iterations = method == SolveMethod::Hierarchical ? 6 : 2;
+      o.tolerance = 0.0;
+      o.path.enabled = false;
+      if (method == SolveMethod::Hierarchical) {
+        const SweepPlan plan = plan_sweep(d.system());
+        EXPECT_EQ(plan.parts.size(), 8u);
+      }
+      d.solve(o);
+      results.push_back(d.vertex_positions());
+    }
+    std::vector<Vec3> rest;
+    for (auto v : c.mesh.vertices()) rest.push_back(c.mesh.point(v));
+    ASSERT_GT(primo::test::max_distance(results[0], rest), 0.01 * c.diagonal);
+    for (size_t k = 1; k < results.size(); ++k)
+      EXPECT_TRUE(same_bits(results[k], results[0]))
+          << (method == SolveMethod::Global ? "global" : "hierarchical") << ", thread count #" << k
+          << ": " << primo::test::max_distance(results[k], results[0]);
+  }
+}
