@@ -191,3 +191,33 @@ TEST_F(DeformCli, StatisticsFailureRemovesTheMesh) {
   EXPECT_EQ(count_lines(r.err), 1) << r.err;
   EXPECT_FALSE(fs::exists(dir + "/o.obj"));
 }
+
+TEST_F(DeformCli, AnyThreadCountWritesTheSameBytes) {
+  // The Figure 2 tube (4,800 triangles) bent 90 degrees: enough work to be cut in chunks.
+  const std::string scenario = primo::test::source_path("assets/scenarios/quality/fig2-bend-90.json");
+  std::string first;
+  for (const char* threads : {"1", "3"}) {
+    const std::string out = dir + "/bend-" + threads + ".obj";
+    const CommandResult r = run_primo("deform " + scenario + " -o " + out + " --threads " + threads);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const std::string text = read_text(out);
+    if (first.empty())
+      first = text;
+    else
+      EXPECT_TRUE(text == first) << "--threads " << threads << " wrote other vertices";
+  }
+  const CommandResult bad = run_primo("deform " + scenario + " -o " + dir + "/x.obj --threads -2");
+  EXPECT_NE(bad.exit_code, 0);
+  EXPECT_NE(bad.err.find("--threads"), std::string::npos) << bad.err;
+}
+
+TEST_F(DeformCli, GenerateLoopSubdividesTrianglesAndRefusesQuads) {
+  const CommandResult tube = run_primo("generate cylinder --segments 8 --bands 6 --triangles -o " +
+                                       dir + "/tube.obj");
+  ASSERT_EQ(tube.exit_code, 0) << tube.err;
+  const CommandResult r = run_primo("generate loop " + dir + "/tube.obj --steps 2 -o " + dir + "/fine.obj");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(primo::load_mesh(dir + "/fine.obj").n_faces(), size_t(16 * 8 * 6 * 2));
+  expect_error("generate loop " + dir + "/cube.obj -o " + dir + "/cube-fine.obj", "triangle",
+               dir + "/cube-fine.obj");
+}

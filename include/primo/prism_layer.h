@@ -38,6 +38,11 @@ struct PrismLayer {
   std::vector<int> corner_vertex;
   std::vector<Vec3> corner_point;
   std::vector<Vec3> corner_offset;
+  // Vertex -> its corners, in corner order: vertex v's are
+  // vertex_corners[vertex_corner_begin[v] .. vertex_corner_begin[v + 1]) (gathers per vertex
+  // run in parallel and add in the order a scatter over the faces would).
+  std::vector<int> vertex_corner_begin;
+  std::vector<int> vertex_corners;
 
   // One joint per interior edge; boundary edges have none.
   std::vector<Joint> joints;

@@ -1,5 +1,7 @@
 // `primo generate cylinder|bar|grid|icosphere [options] -o OUT.ext`: the procedural meshes the
-// tests use, written to a file (the shipped examples in assets/ were made this way).
+// tests use, written to a file (the shipped examples in assets/ were made this way); and
+// `primo generate loop IN --steps K -o OUT.ext`: a triangle mesh Loop-subdivided, the large
+// meshes of the benchmarks as a file the editor opens.
 
 #include <CLI/CLI.hpp>
 #include <memory>
@@ -9,6 +11,7 @@
 #include "primo/mesh_generators.h"
 #include "primo/error.h"
 #include "primo/mesh_io.h"
+#include "primo/mesh_subdivision.h"
 
 namespace primo::app {
 namespace {
@@ -18,6 +21,8 @@ struct GenerateArguments {
   double radius = 0.25, length = 2.0, width = 0.2, size_x = 1.0, size_y = 1.0;
   int segments = 16, bands = 24, across = 2, along = 10, nx = 10, ny = 10, subdivisions = 3;
   bool triangles = false;
+  std::string input;
+  int steps = 1;
 };
 
 int write(const Mesh& mesh, const std::string& output) {
@@ -30,7 +35,7 @@ int write(const Mesh& mesh, const std::string& output) {
 
 Command register_generate(CLI::App& app) {
   auto args = std::make_shared<GenerateArguments>();
-  CLI::App* cmd = app.add_subcommand("generate", "Write a procedural mesh (cylinder, bar, grid, icosphere)");
+  CLI::App* cmd = app.add_subcommand("generate", "Write a procedural mesh (cylinder, bar, grid, icosphere) or a subdivided one (loop)");
   cmd->require_subcommand(1);
   auto shape = [&](CLI::App* sub) { return sub->add_option("-o,--output", args->output, "Mesh file to write")->required(); };
 
@@ -61,7 +66,12 @@ Command register_generate(CLI::App& app) {
   shape(sphere);
   sphere->add_option("--subdivisions", args->subdivisions)->capture_default_str();
 
-  auto run = [args, cylinder, bar, grid, sphere]() -> int {
+  CLI::App* loop = cmd->add_subcommand("loop", "A triangle mesh Loop-subdivided (each step: 4x the faces)");
+  shape(loop);
+  loop->add_option("input", args->input, "Triangle mesh to subdivide")->required();
+  loop->add_option("--steps", args->steps, "Loop steps")->capture_default_str()->check(CLI::Range(1, 4));
+
+  auto run = [args, cylinder, bar, grid, sphere, loop]() -> int {
     check_mesh_output_path(args->output);
     const FaceShape faces = args->triangles ? FaceShape::Triangles : FaceShape::Quads;
     if (cylinder->parsed())
@@ -69,6 +79,8 @@ Command register_generate(CLI::App& app) {
     if (bar->parsed()) return write(make_bar(args->width, args->length, args->across, args->along), args->output);
     if (grid->parsed())
       return write(make_grid(args->size_x, args->size_y, args->nx, args->ny, faces), args->output);
+    if (loop->parsed())
+      return write(loop_subdivide(load_mesh(args->input), args->steps, args->input), args->output);
     if (args->subdivisions < 0 || args->subdivisions > 8)
       throw Error("--subdivisions must be between 0 and 8");
     return write(make_icosphere(args->subdivisions), args->output);

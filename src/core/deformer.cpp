@@ -1,4 +1,5 @@
 #include "primo/deformer.h"
+#include "primo/parallel.h"
 
 #include <algorithm>
 #include <chrono>
@@ -391,20 +392,32 @@ void Deformer::prepare(const SolveOptions& options) {
 }
 
 std::vector<Vec3> Deformer::vertex_positions() const {
-  std::vector<Vec3> sum(rest_points_.size(), Vec3::Zero());
-  std::vector<int> count(rest_points_.size(), 0);
-  for (int f = 0; f < layer_.n_faces(); ++f) {
-    const int b = system_.face_body[f];
-    const BodyState& s = state_[b];
-    const Vec3& center = system_.bodies[b].rest_center;
-    for (int k = layer_.corner_begin[f]; k < layer_.corner_begin[f + 1]; ++k) {
-      sum[layer_.corner_vertex[k]] += s.rotation * (layer_.corner_point[k] - center) + s.position;
-      ++count[layer_.corner_vertex[k]];
+  // Each corner where its prism puts it, then each vertex the mean of its corners, added in
+  // corner order: both loops in parallel, with the sums of a serial scatter over the faces.
+  std::vector<Vec3> corner(layer_.corner_point.size());
+  parallel_chunks(size_t(layer_.n_faces()), kParallelGrain, [&](size_t begin, size_t end) {
+    for (int f = int(begin); f < int(end); ++f) {
+      const int b = system_.face_body[f];
+      const BodyState& s = state_[b];
+      const Vec3& center = system_.bodies[b].rest_center;
+      for (int k = layer_.corner_begin[f]; k < layer_.corner_begin[f + 1]; ++k)
+        corner[k] = s.rotation * (layer_.corner_point[k] - center) + s.position;
     }
-  }
-  for (size_t v = 0; v < sum.size(); ++v)
-    sum[v] = count[v] > 0 ? Vec3(sum[v] / count[v]) : rest_points_[v];
-  return sum;
+  });
+  std::vector<Vec3> points(rest_points_.size());
+  parallel_chunks(points.size(), kParallelGrain, [&](size_t begin, size_t end) {
+    for (size_t v = begin; v < end; ++v) {
+      const int first = layer_.vertex_corner_begin[v], last = layer_.vertex_corner_begin[v + 1];
+      if (first == last) {
+        points[v] = rest_points_[v];
+        continue;
+      }
+      Vec3 sum = Vec3::Zero();
+      for (int i = first; i < last; ++i) sum += corner[size_t(layer_.vertex_corners[size_t(i)])];
+      points[v] = sum / double(last - first);
+    }
+  });
+  return points;
 }
 
 Mesh Deformer::deformed_mesh(const Mesh& mesh) const {

@@ -82,6 +82,17 @@ PrismLayer build_prism_layer(const Mesh& mesh, const PrismParameters& params) {
     layer.corner_begin.push_back(int(layer.corner_vertex.size()));
   }
 
+  layer.vertex_corner_begin.assign(size_t(layer.n_vertices) + 1, 0);
+  for (int v : layer.corner_vertex) ++layer.vertex_corner_begin[size_t(v) + 1];
+  for (int v = 0; v < layer.n_vertices; ++v)
+    layer.vertex_corner_begin[size_t(v) + 1] += layer.vertex_corner_begin[size_t(v)];
+  layer.vertex_corners.resize(layer.corner_vertex.size());
+  {
+    std::vector<int> fill(layer.vertex_corner_begin.begin(), layer.vertex_corner_begin.end() - 1);
+    for (int k = 0; k < int(layer.corner_vertex.size()); ++k)
+      layer.vertex_corners[size_t(fill[size_t(layer.corner_vertex[size_t(k)])]++)] = k;
+  }
+
   // Corner position of vertex `v` within face `f`.
   auto corner_of = [&](int f, int v) {
     for (int k = layer.corner_begin[f]; k < layer.corner_begin[f + 1]; ++k)

@@ -231,6 +231,7 @@ void Editor::update(double seconds) {
       status_.geometry->positions.size() == size_t(doc_->topology->n_vertices)) {
     geometry_ = status_.geometry;
     geometry_changed_ = true;
+    if (gesture_ != Gesture::None) ++current_gesture_.mesh_updates;
     if (display.heat_map) overlay_changed_ = true;
   }
   if (display.heat_map != last_display_.heat_map ||
@@ -602,9 +603,10 @@ void Editor::end_gesture() {
   gesture_stats_ = current_gesture_;
   if (gesture_stats_.frames > 0)
     std::printf("[primo edit] %s: %d frames, %.1f ms mean, %.1f ms max per frame; solver %.1f ms "
-                "per iteration\n",
+                "per iteration; the mesh changed %d times (%.1f a second)\n",
                 what.c_str(), gesture_stats_.frames, gesture_stats_.total_ms / gesture_stats_.frames,
-                gesture_stats_.max_ms, 1000.0 * status_.seconds_per_iteration);
+                gesture_stats_.max_ms, 1000.0 * status_.seconds_per_iteration,
+                gesture_stats_.mesh_updates, gesture_stats_.updates_per_second());
 }
 
 void Editor::cancel_gesture() {

@@ -250,6 +250,10 @@ class Editor {
     std::string what;  // "drag 'top'", "orbit", ...
     int frames = 0;
     double total_ms = 0.0, max_ms = 0.0;
+    // How often the mesh shown changed during the gesture: what the artist sees move (on a
+    // big mesh, fewer times than frames are drawn).
+    int mesh_updates = 0;
+    double updates_per_second() const { return total_ms > 0 ? 1000.0 * mesh_updates / total_ms : 0.0; }
   };
   const GestureStats& last_gesture_stats() const { return gesture_stats_; }
 

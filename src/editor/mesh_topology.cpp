@@ -4,6 +4,8 @@
 #include <cmath>
 #include <utility>
 
+#include "primo/parallel.h"
+
 namespace primo::editor {
 
 MeshTopology build_topology(const Mesh& mesh) {
@@ -80,18 +82,24 @@ Vec3 face_vector_area(const MeshTopology& t, const std::vector<Vec3>& points, in
 
 void compute_vertex_normals(const MeshTopology& topology, const std::vector<Vec3>& points,
                             std::vector<float>& normals) {
-  std::vector<Vec3> sum(topology.n_vertices, Vec3::Zero());
-  for (int f = 0; f < topology.n_faces; ++f) {
-    const Vec3 a = face_vector_area(topology, points, f, face_centroid(topology, points, f));
-    for (int k = topology.face_begin[f]; k < topology.face_begin[f + 1]; ++k)
-      sum[topology.face_vertices[k]] += a;
-  }
+  // Face areas, then each vertex's sum over its faces in face order: in parallel, with the
+  // sums of a serial scatter over the faces.
+  std::vector<Vec3> area(size_t(topology.n_faces));
+  parallel_chunks(area.size(), kParallelGrain, [&](size_t begin, size_t end) {
+    for (int f = int(begin); f < int(end); ++f)
+      area[size_t(f)] = face_vector_area(topology, points, f, face_centroid(topology, points, f));
+  });
   normals.resize(3 * size_t(topology.n_vertices));
-  for (int v = 0; v < topology.n_vertices; ++v) {
-    const double len = sum[v].norm();
-    const Vec3 n = len > 0 ? Vec3(sum[v] / len) : Vec3::UnitZ();
-    for (int i = 0; i < 3; ++i) normals[3 * size_t(v) + i] = float(n[i]);
-  }
+  parallel_chunks(size_t(topology.n_vertices), kParallelGrain, [&](size_t begin, size_t end) {
+    for (size_t v = begin; v < end; ++v) {
+      Vec3 sum = Vec3::Zero();
+      for (int i = topology.vertex_face_begin[v]; i < topology.vertex_face_begin[v + 1]; ++i)
+        sum += area[size_t(topology.vertex_faces[size_t(i)])];
+      const double len = sum.norm();
+      const Vec3 n = len > 0 ? Vec3(sum / len) : Vec3::UnitZ();
+      for (int k = 0; k < 3; ++k) normals[3 * v + size_t(k)] = float(n[k]);
+    }
+  });
 }
 
 std::vector<Vec3> face_centroids(const MeshTopology& topology, const std::vector<Vec3>& points) {

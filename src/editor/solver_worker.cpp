@@ -5,12 +5,15 @@
 #include <exception>
 
 #ifdef __linux__
+#include <tbb/task_scheduler_observer.h>
+
 #include <sys/resource.h>
 #include <sys/syscall.h>
 #include <unistd.h>
 #endif
 
 #include "energy_map.h"
+#include "primo/parallel.h"
 
 namespace primo::editor {
 namespace {
@@ -159,10 +162,27 @@ void SolverWorker::set_phase(SolverPhase phase, std::string error) {
   if (notify_) notify_();
 }
 
-void SolverWorker::run() {
+namespace {
+
+// The engine's parallel loops run on oneTBB's worker threads: each one that joins lowers its
+// own priority as the solver thread does, so that the window's frames never wait for them.
+class LowerWorkerPriority : public tbb::task_scheduler_observer {
+ public:
+  LowerWorkerPriority() { observe(true); }
+  ~LowerWorkerPriority() override { observe(false); }
+  void on_scheduler_entry(bool worker) override {
 #ifdef __linux__
-  // Below the window's thread: a frame waits for the CPU less while the solver iterates (the
-  // engine's own threads inherit this).
+    if (worker) setpriority(PRIO_PROCESS, pid_t(syscall(SYS_gettid)), 5);
+#endif
+  }
+};
+
+}  // namespace
+
+void SolverWorker::run() {
+  static LowerWorkerPriority lower_workers;
+#ifdef __linux__
+  // Below the window's thread: a frame waits for the CPU less while the solver iterates.
   setpriority(PRIO_PROCESS, pid_t(syscall(SYS_gettid)), 5);
 #endif
   for (;;) {
@@ -375,8 +395,10 @@ void SolverWorker::publish_geometry(bool with_motions) {
     g->face_motions = std::make_shared<const std::vector<RigidTransform>>(deformer_->face_motions());
   g->positions = deformer_->vertex_positions();
   g->render_positions.resize(3 * g->positions.size());
-  for (size_t v = 0; v < g->positions.size(); ++v)
-    for (int i = 0; i < 3; ++i) g->render_positions[3 * v + i] = float(g->positions[v][i]);
+  parallel_chunks(g->positions.size(), kParallelGrain, [&](size_t begin, size_t end) {
+    for (size_t v = begin; v < end; ++v)
+      for (int i = 0; i < 3; ++i) g->render_positions[3 * v + i] = float(g->positions[v][i]);
+  });
   compute_vertex_normals(*problem_->topology, g->positions, g->render_normals);
 
   if (energy_on_ || prisms_on_) {

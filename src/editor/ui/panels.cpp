@@ -515,8 +515,8 @@ void solver_section(Editor& e) {
   ImGui::Text("Frame %.1f ms (%.0f fps)", e.frame_ms(), e.frame_ms() > 0 ? 1000.0 / e.frame_ms() : 0.0);
   const Editor::GestureStats& d = e.last_gesture_stats();
   if (d.frames > 0)
-    ImGui::TextDisabled("Last %s: %d frames, %.1f ms mean, %.1f ms max", d.what.c_str(), d.frames,
-                        d.total_ms / d.frames, d.max_ms);
+    ImGui::TextDisabled("Last %s: %d frames, %.1f ms mean, %.1f ms max, mesh %.1f/s", d.what.c_str(),
+                        d.frames, d.total_ms / d.frames, d.max_ms, d.updates_per_second());
 }
 
 void draw_properties(Editor& e, UiState& ui, float top, float height) {
