@@ -27,8 +27,8 @@
 #include <vector>
 
 #include "commands.h"
-#include "output_files.h"
-#include "scenario_solve.h"
+#include "primo/output_files.h"
+#include "primo/scenario_solve.h"
 #include "shared_meshes.h"
 #include "primo/deformer.h"
 #include "primo/error.h"

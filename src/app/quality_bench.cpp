@@ -22,7 +22,7 @@
 #include <vector>
 
 #include "commands.h"
-#include "output_files.h"
+#include "primo/output_files.h"
 #include "paths.h"
 #include "primo/deformer.h"
 #include "primo/error.h"
@@ -33,7 +33,7 @@
 #include "quality/mesh_quality.h"
 #include "quality/stopwatch.h"
 #include "quality_report.h"
-#include "scenario_solve.h"
+#include "primo/scenario_solve.h"
 #include "shared_meshes.h"
 
 namespace fs = std::filesystem;

@@ -15,9 +15,9 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.h"
-#include "output_files.h"
 #include "primo/error.h"
 #include "primo/mesh_io.h"
+#include "primo/output_files.h"
 #include "session.h"
 #include "session_replay.h"
 

@@ -8,7 +8,7 @@
 #include <filesystem>
 #include <limits>
 
-#include "output_files.h"
+#include "app_output_alias.h"
 #include "primo/error.h"
 #include "primo/mesh_io.h"
 #include "scenario_bridge.h"

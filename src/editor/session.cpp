@@ -8,8 +8,8 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "output_files.h"
 #include "primo/error.h"
+#include "primo/output_files.h"
 
 namespace primo::editor {
 namespace {
@@ -507,7 +507,7 @@ std::string session_to_json(const Session& s, const std::string& session_path) {
 }
 
 void save_session(const Session& session, const std::string& path) {
-  app::write_text_atomically(path, session_to_json(session, path));
+  write_text_atomically(path, session_to_json(session, path));
 }
 
 void apply_event(EditState& state, const SessionEvent& e, int n_faces) {

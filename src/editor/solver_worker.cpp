@@ -11,6 +11,7 @@
 #endif
 
 #include "energy_map.h"
+#include "primo/scenario_solve.h"
 
 namespace primo::editor {
 namespace {
@@ -32,13 +33,7 @@ constexpr int kSettleBatch = 4;
 }  // namespace
 
 SolveMethod interactive_solve_method(SolverMethod requested, int n_faces) {
-  switch (requested) {
-    case SolverMethod::Global: return SolveMethod::Global;
-    case SolverMethod::Local: return SolveMethod::Local;
-    case SolverMethod::Hierarchical: return SolveMethod::Hierarchical;
-    case SolverMethod::Default: break;
-  }
-  return default_solve_method(size_t(n_faces));
+  return scenario_solve_method(requested, size_t(n_faces));
 }
 
 namespace {
