@@ -14,7 +14,8 @@ packages=(
   libcgal-dev
   # editor
   libglfw3-dev libglm-dev libimgui-dev libstb-dev libgl-dev libgl1-mesa-dri
-  # tests and benchmarks
+  # tests (GoogleTest; the editor's end-to-end tests under Xvfb) and the micro-benchmarks
+  # (Google Benchmark: primo_microbench)
   libgtest-dev libgmock-dev libbenchmark-dev xvfb xauth xdotool
 )
 

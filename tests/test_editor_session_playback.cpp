@@ -1,5 +1,5 @@
 // Sessions inside the editor (no window): recording what commands and panels do to the
-// document, saving, and playback with seek and play; the shipped session checks out.
+// document, saving, and playback with seek and play.
 
 #include <gtest/gtest.h>
 
@@ -9,7 +9,7 @@
 #include "editor.h"
 #include "primo/mesh_generators.h"
 #include "primo/mesh_io.h"
-#include "session.h"
+#include "primo/session.h"
 #include "test_support.h"
 
 using namespace primo;
@@ -120,18 +120,6 @@ TEST(EditorSessions, PlaybackRejectsASessionOfAnotherMesh) {
   EXPECT_NE(e.messages().back().text.find("events[0] (factors): faces[0]: face 100000 out of range"),
             std::string::npos)
       << e.messages().back().text;
-}
-
-TEST(EditorSessions, ShippedSessionIsValid) {
-  const Session s = load_session(primo::test::source_path("assets/sessions/spot-pose.session.json"));
-  const Mesh mesh = load_mesh(s.mesh_path);
-  const EditState end = validate_session(s, int(mesh.n_faces()));
-  EXPECT_EQ(end.handles.size(), 3u);
-  EXPECT_GT(s.events.size(), 20u);
-  bool undo = false, redo = false;
-  for (const SessionEvent& ev : s.events)
-    undo = undo || ev.type == SessionEvent::Type::Undo, redo = redo || ev.type == SessionEvent::Type::Redo;
-  EXPECT_TRUE(undo && redo);
 }
 
 TEST(SessionControl, ProposesAFilePerMeshAndReadableDurations) {

@@ -16,9 +16,8 @@ struct Command {
 };
 
 Command register_deform(CLI::App& app);
+// `primo bench engine | drag | quality` (the benchmarks themselves are in src/bench).
 Command register_bench(CLI::App& app);
-// `primo bench quality` (quality_bench.cpp), registered under `bench` by register_bench.
-Command register_bench_quality(CLI::App& bench);
 Command register_metrics(CLI::App& app);
 Command register_generate(CLI::App& app);
 Command register_edit(CLI::App& app);

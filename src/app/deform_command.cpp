@@ -7,13 +7,13 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.h"
-#include "output_files.h"
-#include "scenario_solve.h"
 #include "primo/deformer.h"
 #include "primo/error.h"
 #include "primo/mesh_io.h"
+#include "primo/output_files.h"
 #include "primo/scenario.h"
 #include "primo/scenario_deformer.h"
+#include "primo/scenario_solve.h"
 
 namespace primo::app {
 namespace {

@@ -7,11 +7,11 @@
 #include <memory>
 
 #include "commands.h"
-#include "output_files.h"
-#include "primo/mesh_generators.h"
 #include "primo/error.h"
+#include "primo/mesh_generators.h"
 #include "primo/mesh_io.h"
 #include "primo/mesh_subdivision.h"
+#include "primo/output_files.h"
 
 namespace primo::app {
 namespace {

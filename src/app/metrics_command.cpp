@@ -8,10 +8,10 @@
 #include <string>
 
 #include "commands.h"
-#include "output_files.h"
 #include "primo/mesh_io.h"
+#include "primo/output_files.h"
 #include "quality/mesh_quality.h"
-#include "quality_report.h"
+#include "quality/quality_report.h"
 
 namespace primo::app {
 namespace {
@@ -26,7 +26,7 @@ void print_metrics(const quality::QualityMetrics& m) {
   std::printf("%-34s %d vertices, %d faces, %d interior edges, %d boundary loops\n", "mesh",
               m.vertices, m.faces, m.interior_edges, m.boundary_loops);
   std::printf("%-34s %s  (%.6g -> %.6g)\n", "volume change % (capped)",
-              format_volume_change(m).c_str(), m.rest_volume, m.deformed_volume);
+              quality::format_volume_change(m).c_str(), m.rest_volume, m.deformed_volume);
   std::printf("%-34s %+.2f  (%.6g -> %.6g)\n", "area change %", m.area_change_percent,
               m.rest_area, m.deformed_area);
   std::printf("%-34s %.3f\n", "dihedral change RMS (deg)", m.dihedral_change_rms_deg);
@@ -48,7 +48,7 @@ int run_metrics(const MetricsArguments& args) {
   std::printf("primo metrics %s -> %s\n\n", args.rest.c_str(), args.deformed.c_str());
   print_metrics(metrics);
   if (!args.json.empty()) {
-    nlohmann::json out = quality_json(metrics);
+    nlohmann::json out = quality::quality_json(metrics);
     out["rest"] = args.rest;
     out["deformed"] = args.deformed;
     write_text_atomically(args.json, out.dump(2) + "\n");

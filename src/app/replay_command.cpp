@@ -15,11 +15,12 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.h"
-#include "output_files.h"
 #include "primo/error.h"
 #include "primo/mesh_io.h"
-#include "session.h"
-#include "session_replay.h"
+#include "primo/output_files.h"
+#include "primo/session.h"
+#include "primo/session_mapping.h"
+#include "primo/session_replay.h"
 
 namespace primo::app {
 namespace {
@@ -60,21 +61,21 @@ int run_replay(const ReplayArguments& args) {
   if (!args.frames.empty() && !fs::is_directory(fs::absolute(fs::path(args.frames)).parent_path()))
     throw Error(args.frames + ": the folder " + fs::absolute(fs::path(args.frames)).parent_path().string() +
                 " does not exist");
-  const editor::Session session = editor::load_session(args.session);
-  editor::Session session_on_mesh;
+  const Session session = load_session(args.session);
+  Session session_on_mesh;
   Mesh mesh = load_mesh(session.mesh_path);
   if (!args.mesh.empty()) {  // a finer version of the recorded mesh
     Mesh fine = load_mesh(args.mesh);
-    session_on_mesh = editor::map_session_to_mesh(session, mesh, fine);
+    session_on_mesh = map_session_to_mesh(session, mesh, fine);
     mesh = std::move(fine);
   } else {
     session_on_mesh = session;
   }
-  editor::validate_session(session_on_mesh, int(mesh.n_faces()));  // before anything is written
+  validate_session(session_on_mesh, int(mesh.n_faces()));  // before anything is written
 
   fs::path temp;
   std::vector<std::string> written;
-  editor::ReplayOptions options;
+  ReplayOptions options;
   options.iterations_per_frame = args.iterations_per_frame;
   if (!args.frames.empty()) {
     temp = fs::path(args.frames) / (".primo-replay-" + std::to_string(::getpid()));
@@ -86,9 +87,9 @@ int run_replay(const ReplayArguments& args) {
       written.push_back(name);
     };
   }
-  editor::ReplayResult result;
+  ReplayResult result;
   try {
-    result = editor::replay_session(session_on_mesh, mesh, options);
+    result = replay_session(session_on_mesh, mesh, options);
     Mesh final_mesh = mesh;
     for (auto v : final_mesh.vertices()) final_mesh.set_point(v, result.positions[size_t(v.idx())]);
     const double seconds =

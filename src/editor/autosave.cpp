@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <functional>
 
-#include "output_files.h"
+#include "primo/output_files.h"
 #include "user_folders.h"
 
 namespace primo::editor {
@@ -56,7 +56,7 @@ std::vector<AutosavedWork> list_autosaved_work() {
 void write_autosave(const std::string& path, const std::string& scenario_json) {
   std::error_code ec;
   fs::create_directories(fs::path(path).parent_path(), ec);
-  app::write_text_atomically(path, scenario_json);
+  write_text_atomically(path, scenario_json);
 }
 
 void remove_autosave(const std::string& path) {

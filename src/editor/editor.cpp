@@ -8,7 +8,7 @@
 #include <filesystem>
 #include <limits>
 
-#include "output_files.h"
+#include "primo/output_files.h"
 #include "primo/error.h"
 #include "primo/mesh_io.h"
 #include "scenario_bridge.h"
@@ -127,7 +127,7 @@ void Editor::save_mesh(const std::string& path) {
   if (!doc_) return error("Nothing to save: open a mesh first");
   if (task_.valid()) return error("Still busy with " + task_label_ + "; try again when it is done");
   try {
-    app::check_mesh_output_path(path);
+    check_mesh_output_path(path);
   } catch (const std::exception& e) {
     return error(e.what());
   }
@@ -164,7 +164,7 @@ bool Editor::save_scenario(const std::string& path) {
     return false;
   }
   try {
-    app::write_text_atomically(path, scenario_text(path));
+    write_text_atomically(path, scenario_text(path));
   } catch (const std::exception& e) {
     error(e.what());
     return false;

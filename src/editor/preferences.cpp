@@ -7,7 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "output_files.h"
+#include "primo/output_files.h"
 #include "user_folders.h"
 
 namespace primo::editor {
@@ -101,7 +101,7 @@ bool save_preferences(const Preferences& p, const std::string& path) {
   try {
     std::error_code ec;
     std::filesystem::create_directories(std::filesystem::path(file).parent_path(), ec);
-    app::write_text_atomically(file, j.dump(2) + "\n");
+    write_text_atomically(file, j.dump(2) + "\n");
     return true;
   } catch (const std::exception&) {
     return false;

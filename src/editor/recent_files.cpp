@@ -6,7 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "output_files.h"
+#include "primo/output_files.h"
 #include "user_folders.h"
 
 namespace primo::editor {
@@ -43,7 +43,7 @@ bool RecentFiles::write() const {
   try {
     std::error_code ec;
     fs::create_directories(fs::path(path_).parent_path(), ec);
-    app::write_text_atomically(path_, nlohmann::json{{"files", entries_}}.dump(2) + "\n");
+    write_text_atomically(path_, nlohmann::json{{"files", entries_}}.dump(2) + "\n");
     return true;
   } catch (const std::exception&) {
     return false;

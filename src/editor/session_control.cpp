@@ -7,6 +7,7 @@
 
 #include "editor.h"
 #include "primo/error.h"
+#include "session_bridge.h"
 
 namespace primo::editor {
 
@@ -41,7 +42,7 @@ void SessionControl::stop_recording(Editor& e) {
   if (!recorder_.recording()) return;
   recorded_ = doc_ == e.document() && e.document() ? recorder_.stop(*e.document(), clock_)
                                                    : recorder_.session();
-  if (recorder_.recording()) recorder_ = SessionRecorder{};
+  if (recorder_.recording()) recorder_ = DocumentRecorder{};
   e.info("Recorded " + std::to_string(recorded_.events.size()) + " events over " +
          std::to_string(recorded_.frames()) + " frames");
 }
@@ -110,18 +111,23 @@ void SessionControl::show(Editor& e, double t) {
   // Forward: apply the new events; backward: start again from the initial state.
   size_t n = 0;
   while (n < playback_.events.size() && playback_.events[n].t <= t) ++n;
-  EditState s = doc->state;
+  SessionState s = session_state(doc->state);
+  int active = doc->state.active;
   size_t from = shown_events_;
   if (t < time_ || n < shown_events_ || t == 0.0) {
-    s.handles = playback_initial_.handles;
-    s.prisms = playback_initial_.prisms;
-    s.height_factor = playback_initial_.height_factor;
-    s.width_factor = playback_initial_.width_factor;
+    s = playback_initial_;
     from = 0;
   }
-  for (size_t i = from; i < n; ++i) apply_event(s, playback_.events[i], doc->n_faces());
-  if (s.active >= int(s.handles.size())) s.active = -1;
-  doc->state = s;
+  for (size_t i = from; i < n; ++i) {
+    apply_event(s, playback_.events[i], doc->n_faces());
+    // A new handle list keeps the active handle when it is still there, else its last one.
+    if (playback_.events[i].type == SessionEvent::Type::Handles)
+      active = std::min(active, int(s.handles.size()) - 1);
+  }
+  EditState shown = doc->state;
+  set_session_state(shown, s);
+  shown.active = active >= int(shown.handles.size()) ? -1 : active;
+  doc->state = shown;
   time_ = t;
   shown_events_ = n;
   e.live_edit();
@@ -130,7 +136,7 @@ void SessionControl::show(Editor& e, double t) {
 void SessionControl::update(Editor& e, double seconds) {
   clock_ += seconds;
   if (doc_ && doc_ != e.document()) {  // another document was opened
-    if (recorder_.recording()) recorded_ = recorder_.session(), recorder_ = SessionRecorder{};
+    if (recorder_.recording()) recorded_ = recorder_.session(), recorder_ = DocumentRecorder{};
     if (has_playback_) playing_ = false, has_playback_ = false;
     doc_ = nullptr;
   }

@@ -3,7 +3,7 @@
 // (ui/session_panel.cpp) and the script commands record-start / record-stop / save-session /
 // play-session call it, and Editor::update drives it once per frame.
 //
-// Recording observes the document after every frame (SessionRecorder). Playback loads a
+// Recording observes the document after every frame (DocumentRecorder). Playback loads a
 // session recorded on the open mesh (same face count) and shows the edit state at the
 // playback time: seeking recomputes it from the session's initial state, playing advances the
 // time with the frame clock. Each shown state goes to the solver like a live edit; pausing or
@@ -11,7 +11,8 @@
 
 #include <string>
 
-#include "session.h"
+#include "document_recorder.h"
+#include "primo/session.h"
 
 namespace primo::editor {
 
@@ -56,14 +57,14 @@ class SessionControl {
  private:
   void show(Editor& editor, double t);
 
-  SessionRecorder recorder_;
+  DocumentRecorder recorder_;
   Session recorded_;
   bool has_recording_ = false;
   double clock_ = 0.0;
   const Document* doc_ = nullptr;  // the document recorded or played on
 
   Session playback_;
-  EditState playback_initial_;  // the session's initial state on the open mesh
+  SessionState playback_initial_;  // the session's initial state on the open mesh
   bool has_playback_ = false;
   bool playing_ = false;
   double time_ = 0.0;

@@ -4,9 +4,9 @@
 #include <cmath>
 #include <exception>
 
-#ifdef __linux__
 #include <tbb/task_scheduler_observer.h>
 
+#ifdef __linux__
 #include <sys/resource.h>
 #include <sys/syscall.h>
 #include <unistd.h>
@@ -14,6 +14,7 @@
 
 #include "energy_map.h"
 #include "primo/parallel.h"
+#include "primo/scenario_solve.h"
 
 namespace primo::editor {
 namespace {
@@ -35,13 +36,7 @@ constexpr int kSettleBatch = 4;
 }  // namespace
 
 SolveMethod interactive_solve_method(SolverMethod requested, int n_faces) {
-  switch (requested) {
-    case SolverMethod::Global: return SolveMethod::Global;
-    case SolverMethod::Local: return SolveMethod::Local;
-    case SolverMethod::Hierarchical: return SolveMethod::Hierarchical;
-    case SolverMethod::Default: break;
-  }
-  return default_solve_method(size_t(n_faces));
+  return scenario_solve_method(requested, size_t(n_faces));
 }
 
 namespace {

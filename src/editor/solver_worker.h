@@ -27,7 +27,8 @@ namespace primo::editor {
 
 // The method the editor solves with: the scenario's solver.method when it names one, else what
 // `primo deform` picks by default (global Newton up to 20,000 faces, hierarchical above), so
-// that both end at the same result. The one place to change it.
+// that both end at the same result. It is scenario_solve_method (primo/scenario_solve.h),
+// which `primo deform` and `primo replay` use too.
 SolveMethod interactive_solve_method(SolverMethod requested, int n_faces);
 
 struct SolverProblem {

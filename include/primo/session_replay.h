@@ -3,7 +3,7 @@
 // the same session on the same mesh gives bitwise the same meshes.
 //
 // Frame by frame, from frame 0 to the last recorded frame: the frame's events are applied to
-// the EditState; when the structure changed (handles created/deleted/re-moded, factors or prism
+// the state; when the structure changed (handles created/deleted/re-moded, factors or prism
 // settings) the Deformer is rebuilt keeping the current face motions (as the editor's solver
 // thread does), otherwise the new handle targets are set; then `iterations_per_frame` solver
 // iterations run, warm-started (skipped once converged and nothing changed since). After the
@@ -12,14 +12,13 @@
 // the converged pose the editor shows at the end of the session.
 
 #include <functional>
-#include <memory>
 #include <vector>
 
 #include "primo/deformer.h"
 #include "primo/mesh.h"
-#include "session.h"
+#include "primo/session.h"
 
-namespace primo::editor {
+namespace primo {
 
 struct ReplayOptions {
   int iterations_per_frame = 1;
@@ -30,7 +29,7 @@ struct ReplayOptions {
 
 struct ReplayResult {
   std::vector<Vec3> positions;  // final deformed vertices
-  EditState state;              // final edit state
+  SessionState state;           // final state
   int frames = 0;
   int rebuilds = 0;
   long iterations = 0;
@@ -42,19 +41,8 @@ struct ReplayResult {
 // solve), then replays it.
 ReplayResult replay_session(const Session& session, const Mesh& mesh, const ReplayOptions& options = {});
 
-// The final state solved from rest with a fresh Deformer to the session's tolerance: what
+// The state solved from rest with a fresh Deformer to the session's tolerance: what
 // `primo deform` gives for the scenario the editor would export at the end.
-std::vector<Vec3> solve_from_rest(const EditState& state, const Mesh& mesh, const SolverSpec& spec);
+std::vector<Vec3> solve_from_rest(const SessionState& state, const Mesh& mesh, const SolverSpec& spec);
 
-}  // namespace primo::editor
-
-namespace primo::editor {
-
-// The session carried over to a finer version of the same surface (e.g. subdivided): every
-// face of `fine` takes the face of `coarse` whose centroid is nearest its own, and handles and
-// painted factors select the fine faces of their coarse faces. Poses are unchanged (the same
-// rigid motions about the same pivots), so the posing is the same. Validates the session on
-// `coarse` first (errors name the event). Throws primo::Error when a handle ends up empty.
-Session map_session_to_mesh(const Session& session, const Mesh& coarse, const Mesh& fine);
-
-}  // namespace primo::editor
+}  // namespace primo

@@ -1,4 +1,4 @@
-#include "output_files.h"
+#include "primo/output_files.h"
 
 #include <unistd.h>
 
@@ -12,13 +12,17 @@
 
 namespace fs = std::filesystem;
 
-namespace primo::app {
+namespace primo {
+namespace {
 
+// Lower-case extension with the dot (".obj"), or "" when there is none.
 std::string extension_of(const std::string& path) {
   std::string ext = fs::path(path).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
   return ext;
 }
+
+}  // namespace
 
 void check_mesh_output_path(const std::string& path) {
   const std::string ext = extension_of(path);
@@ -53,4 +57,4 @@ void write_text_atomically(const std::string& path, const std::string& text) {
   }
 }
 
-}  // namespace primo::app
+}  // namespace primo

@@ -1,11 +1,12 @@
-#include "shared_meshes.h"
+#include "inputs.h"
 
+#include <cstdlib>
 #include <filesystem>
 #include <vector>
 
 namespace fs = std::filesystem;
 
-namespace primo::app {
+namespace primo::bench {
 
 std::string find_shared_mesh(const std::string& name) {
   std::vector<fs::path> starts;
@@ -31,4 +32,9 @@ std::string locate_mesh(const std::string& mesh) {
   return find_shared_mesh(mesh);
 }
 
-}  // namespace primo::app
+std::string asset_dir() {
+  const char* value = std::getenv("PRIMO_ASSET_DIR");
+  return value && *value ? std::string(value) : std::string(PRIMO_SOURCE_ASSET_DIR);
+}
+
+}  // namespace primo::bench

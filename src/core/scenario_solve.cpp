@@ -1,11 +1,8 @@
-#include "scenario_solve.h"
+#include "primo/scenario_solve.h"
 
-namespace primo::app {
+namespace primo {
 
-SolveMethod choose_solve_method(const std::string& flag, SolverMethod from_scenario, size_t faces) {
-  if (flag == "local") return SolveMethod::Local;
-  if (flag == "global") return SolveMethod::Global;
-  if (flag == "hierarchical") return SolveMethod::Hierarchical;
+SolveMethod scenario_solve_method(SolverMethod from_scenario, size_t faces) {
   switch (from_scenario) {
     case SolverMethod::Local: return SolveMethod::Local;
     case SolverMethod::Global: return SolveMethod::Global;
@@ -13,6 +10,13 @@ SolveMethod choose_solve_method(const std::string& flag, SolverMethod from_scena
     case SolverMethod::Default: break;
   }
   return default_solve_method(faces);
+}
+
+SolveMethod choose_solve_method(const std::string& flag, SolverMethod from_scenario, size_t faces) {
+  if (flag == "local") return SolveMethod::Local;
+  if (flag == "global") return SolveMethod::Global;
+  if (flag == "hierarchical") return SolveMethod::Hierarchical;
+  return scenario_solve_method(from_scenario, faces);
 }
 
 SolveOptions scenario_solve_options(const SolverSpec& solver, size_t faces,
@@ -36,4 +40,4 @@ const char* solve_method_name(SolveMethod method) {
   return "global";
 }
 
-}  // namespace primo::app
+}  // namespace primo

@@ -2,9 +2,9 @@
 
 #include <cstdio>
 
-namespace primo::app {
+namespace primo::quality {
 
-nlohmann::json quality_json(const quality::QualityMetrics& m) {
+nlohmann::json quality_json(const QualityMetrics& m) {
   nlohmann::json volume_change = nullptr;
   if (m.volume_change_percent) volume_change = *m.volume_change_percent;
   return {
@@ -23,17 +23,17 @@ nlohmann::json quality_json(const quality::QualityMetrics& m) {
       {"edge_change_rms_percent", m.edge_change_rms_percent},
       {"edge_change_max_percent", m.edge_change_max_percent},
       {"fold_overs", m.fold_overs},
-      {"fold_over_threshold_deg", quality::kFoldOverDegrees},
+      {"fold_over_threshold_deg", kFoldOverDegrees},
       {"self_intersecting_pairs", m.self_intersecting_pairs},
       {"degenerate_triangles", m.degenerate_triangles},
   };
 }
 
-std::string format_volume_change(const quality::QualityMetrics& m) {
+std::string format_volume_change(const QualityMetrics& m) {
   if (!m.volume_change_percent) return "-";
   char text[32];
   std::snprintf(text, sizeof text, "%+.1f", *m.volume_change_percent);
   return text;
 }
 
-}  // namespace primo::app
+}  // namespace primo::quality

@@ -1,58 +1,34 @@
-// `primo bench quality [SCENARIO...] [--case NAME]... [--json FILE] [--output-dir DIR]
-//                      [--mesh-dir DIR] [--peer-max-iterations N]`
-//
-// How smooth and how faithful large one-step edits are (issue 12, docs/quality.md): every case
-// is a scenario, solved by PriMo exactly as `primo deform` solves it, and by CGAL's ARAP and
-// SR-ARAP (Surface_mesh_deformation) on the same handles in the same run. Each result is
-// measured against the rest mesh (quality/mesh_quality.h). Without scenario arguments the
-// cases are assets/scenarios/quality/*.json: the paper's Figure 2 cylinder (bend 90 and 180
-// degrees, twist 180 degrees, shift) and real meshes from ../shared/meshes.
+#include "quality_bench.h"
 
-#include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cctype>
 #include <cstdio>
 #include <ctime>
 #include <filesystem>
-#include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <thread>
 #include <vector>
 
-#include "commands.h"
-#include "output_files.h"
-#include "paths.h"
+#include "inputs.h"
 #include "primo/deformer.h"
 #include "primo/error.h"
 #include "primo/mesh_io.h"
+#include "primo/output_files.h"
 #include "primo/scenario.h"
 #include "primo/scenario_deformer.h"
+#include "primo/scenario_solve.h"
 #include "quality/cgal_deformation.h"
 #include "quality/mesh_quality.h"
+#include "quality/quality_report.h"
 #include "quality/stopwatch.h"
-#include "quality_report.h"
-#include "scenario_solve.h"
-#include "shared_meshes.h"
+#include "report.h"
 
 namespace fs = std::filesystem;
 
-namespace primo::app {
+namespace primo::bench {
 namespace {
-
-struct QualityBenchArguments {
-  std::vector<std::string> scenarios;
-  std::vector<std::string> cases;
-  std::string json;
-  std::string output_dir;
-  std::string mesh_dir;
-  quality::PeerSettings peer;
-  // The material PriMo is measured with: the product's default unless told otherwise, so
-  // the table shows what a new user gets (docs/quality.md, "Default material").
-  double half_thickness = kDefaultHalfThickness;
-  bool scenario_material = false;  // the scenario's own prisms.height / half_thickness
-};
 
 // One method's result on one case.
 struct MethodRun {
@@ -74,10 +50,10 @@ struct CaseResult {
 
 // The cases: the scenarios given, else every scenario of the shipped quality folder, in file
 // name order; --case keeps those whose name (file name without .json) is listed.
-std::vector<std::string> case_scenarios(const QualityBenchArguments& args) {
+std::vector<std::string> case_scenarios(const QualityBenchOptions& args) {
   std::vector<std::string> scenarios = args.scenarios;
   if (scenarios.empty()) {
-    const fs::path folder = fs::path(editor::asset_dir()) / "scenarios" / "quality";
+    const fs::path folder = fs::path(asset_dir()) / "scenarios" / "quality";
     std::error_code ec;
     if (!fs::is_directory(folder, ec))
       throw Error(folder.string() + ": no such folder (set PRIMO_ASSET_DIR or pass scenarios)");
@@ -155,7 +131,7 @@ void save_result(const Mesh& result, const std::string& output_dir, const std::s
   save_mesh(result, (fs::path(output_dir) / (case_name + "-" + suffix + ".obj")).string());
 }
 
-CaseResult run_case(const std::string& scenario_path, const QualityBenchArguments& args) {
+CaseResult run_case(const std::string& scenario_path, const QualityBenchOptions& args) {
   CaseResult c;
   c.scenario = scenario_path;
   c.name = fs::path(scenario_path).stem().string();
@@ -246,7 +222,7 @@ void print_case(const CaseResult& c) {
     if (r.report && cpu_ratio) std::snprintf(cpu_text, sizeof cpu_text, "%.2f", *cpu_ratio);
     std::printf(
         "%-20s %-7s %5d %6s %+6.1f %7.2f %7.2f %7.2f %7.2f %5d %5d %10s %7.2f %6.2f %5s %5s\n",
-        c.name.c_str(), r.method.c_str(), m.faces, format_volume_change(m).c_str(),
+        c.name.c_str(), r.method.c_str(), m.faces, quality::format_volume_change(m).c_str(),
         m.area_change_percent, m.dihedral_change_rms_deg, m.dihedral_change_max_deg,
         m.edge_change_rms_percent, m.edge_change_max_percent, m.fold_overs,
         m.self_intersecting_pairs, energy, r.seconds.wall, r.seconds.cpu, wall_text, cpu_text);
@@ -276,7 +252,7 @@ nlohmann::json case_json(const CaseResult& c) {
     nlohmann::json run = {{"method", r.method},
                           {"seconds", r.seconds.wall},
                           {"cpu_seconds", r.seconds.cpu},
-                          {"metrics", quality_json(r.metrics)}};
+                          {"metrics", quality::quality_json(r.metrics)}};
     if (r.report) {
       run["solver"] = r.solver;
       run["energy"] = r.report->energy;
@@ -295,7 +271,9 @@ std::string utc_now() {
   return text;
 }
 
-int run_bench_quality(const QualityBenchArguments& args) {
+}  // namespace
+
+int run_quality_bench(const QualityBenchOptions& args) {
   const std::vector<std::string> scenarios = case_scenarios(args);
   if (!args.output_dir.empty()) {
     std::error_code ec;
@@ -303,14 +281,10 @@ int run_bench_quality(const QualityBenchArguments& args) {
     if (!fs::is_directory(args.output_dir, ec))
       throw Error(args.output_dir + ": cannot create the output folder");
   }
-#ifdef NDEBUG
-  const char* build = "optimized (NDEBUG)";
-#else
-  const char* build = "debug (assertions on): times are not representative";
-#endif
+  const std::string build = build_label("times");
   const quality::PeerSettings& peer = args.peer;
   std::printf("primo bench quality: %zu cases  [build: %s; %u hardware threads]\n", scenarios.size(),
-              build, std::thread::hardware_concurrency());
+              build.c_str(), std::thread::hardware_concurrency());
   const std::string material =
       args.scenario_material ? std::string("the scenario's prisms")
                              : "half_thickness " + std::to_string(args.half_thickness).substr(0, 6) +
@@ -342,34 +316,4 @@ int run_bench_quality(const QualityBenchArguments& args) {
   return 0;
 }
 
-}  // namespace
-
-Command register_bench_quality(CLI::App& bench) {
-  auto args = std::make_shared<QualityBenchArguments>();
-  CLI::App* cmd = bench.add_subcommand(
-      "quality", "Large one-step edits: PriMo against CGAL's ARAP and SR-ARAP, with quality metrics");
-  cmd->add_option("scenarios", args->scenarios,
-                  "Scenario files to run (default: every case in assets/scenarios/quality)");
-  cmd->add_option("--case", args->cases,
-                  "Only this case (the scenario's file name without .json); repeatable");
-  cmd->add_option("--json", args->json, "Also write every figure as JSON");
-  cmd->add_option("--output-dir", args->output_dir,
-                  "Write every result mesh as CASE-primo.obj, CASE-arap.obj, CASE-sr-arap.obj");
-  cmd->add_option("--mesh-dir", args->mesh_dir,
-                  "Where to find a scenario's mesh that is not at the scenario's own path (by "
-                  "file name; default: a shared/meshes folder above the working directory or the "
-                  "executable)");
-  cmd->add_option("--peer-max-iterations", args->peer.max_iterations,
-                  "Iteration cap of the ARAP peers (default 1000; their tolerance, 1e-6, ends "
-                  "them earlier)")
-      ->check(CLI::Range(1, 1000000));
-  cmd->add_option("--half-thickness", args->half_thickness,
-                  "PriMo's layer half-thickness as a fraction of the bounding-box diagonal "
-                  "(default: the product's default material)")
-      ->check(CLI::Range(0.0, 1.0));
-  cmd->add_flag("--scenario-material", args->scenario_material,
-                "Use each scenario's own prisms height instead of --half-thickness");
-  return {cmd, [args] { return run_bench_quality(*args); }};
-}
-
-}  // namespace primo::app
+}  // namespace primo::bench

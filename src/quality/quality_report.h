@@ -5,14 +5,14 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "quality/mesh_quality.h"
+#include "mesh_quality.h"
 
-namespace primo::app {
+namespace primo::quality {
 
 // Every field of the metrics; volume_change_percent is null when the rest volume is zero.
-nlohmann::json quality_json(const quality::QualityMetrics& metrics);
+nlohmann::json quality_json(const QualityMetrics& metrics);
 
 // "+12.3" (one decimal, signed), or "-" when the rest volume is zero.
-std::string format_volume_change(const quality::QualityMetrics& metrics);
+std::string format_volume_change(const QualityMetrics& metrics);
 
-}  // namespace primo::app
+}  // namespace primo::quality

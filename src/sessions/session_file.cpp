@@ -1,4 +1,7 @@
-#include "session.h"
+// Reading and writing session files (docs/sessions.md, "The format"). Reading is strict and
+// every error names where it is; writing puts one event per line.
+
+#include "primo/session.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,10 +11,10 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "output_files.h"
 #include "primo/error.h"
+#include "primo/output_files.h"
 
-namespace primo::editor {
+namespace primo {
 namespace {
 
 using json = nlohmann::json;
@@ -83,22 +86,23 @@ std::vector<double> number_array(const json& j, const std::string& path) {
   return out;
 }
 
-const char* mode_name(HandleMode m) {
+const char* mode_name(SessionHandleMode m) {
   switch (m) {
-    case HandleMode::Pose: return "pose";
-    case HandleMode::Position: return "position";
-    case HandleMode::Orientation: return "orientation";
-    case HandleMode::Spring: return "spring";
-    case HandleMode::Fixed: return "fixed";
+    case SessionHandleMode::Pose: return "pose";
+    case SessionHandleMode::Position: return "position";
+    case SessionHandleMode::Orientation: return "orientation";
+    case SessionHandleMode::Spring: return "spring";
+    case SessionHandleMode::Fixed: return "fixed";
   }
   return "pose";
 }
 
-HandleMode parse_mode(const json& j, const std::string& path) {
+SessionHandleMode parse_mode(const json& j, const std::string& path) {
   if (j.is_string()) {
     const std::string s = j.get<std::string>();
-    for (HandleMode m : {HandleMode::Pose, HandleMode::Position, HandleMode::Orientation,
-                         HandleMode::Spring, HandleMode::Fixed})
+    for (SessionHandleMode m : {SessionHandleMode::Pose, SessionHandleMode::Position,
+                                SessionHandleMode::Orientation, SessionHandleMode::Spring,
+                                SessionHandleMode::Fixed})
       if (s == mode_name(m)) return m;
   }
   fail(path, "expected \"pose\", \"position\", \"orientation\", \"spring\" or \"fixed\"");
@@ -107,11 +111,11 @@ HandleMode parse_mode(const json& j, const std::string& path) {
 json vec_json(const Vec3& v) { return json::array({v.x(), v.y(), v.z()}); }
 json quat_json(const Eigen::Quaterniond& q) { return json::array({q.w(), q.x(), q.y(), q.z()}); }
 
-json pose_json(const Pose& p) {
+json pose_json(const SessionPose& p) {
   return {{"translate", vec_json(p.translate)}, {"rotation", quat_json(p.rotation)}};
 }
 
-json group_json(const HandleGroup& g) {
+json handle_json(const SessionHandle& g) {
   json j = {{"name", g.name},     {"mode", mode_name(g.mode)}, {"faces", *g.faces},
             {"stiffness", g.stiffness}, {"center", vec_json(g.center)}, {"color", g.color}};
   j["translate"] = vec_json(g.pose.translate);
@@ -119,9 +123,9 @@ json group_json(const HandleGroup& g) {
   return j;
 }
 
-HandleGroup parse_group(const json& j, const std::string& path) {
+SessionHandle parse_handle(const json& j, const std::string& path) {
   check_object(j, path, {"name", "mode", "faces", "stiffness", "center", "color", "translate", "rotation"});
-  HandleGroup g;
+  SessionHandle g;
   const json& name = member(j, path, "name");
   if (!name.is_string()) fail(at(path, "name"), "expected a string");
   g.name = name.get<std::string>();
@@ -138,10 +142,10 @@ HandleGroup parse_group(const json& j, const std::string& path) {
   return g;
 }
 
-std::vector<HandleGroup> parse_groups(const json& j, const std::string& path) {
+std::vector<SessionHandle> parse_handles(const json& j, const std::string& path) {
   if (!j.is_array()) fail(path, "expected an array of handles");
-  std::vector<HandleGroup> out;
-  for (size_t i = 0; i < j.size(); ++i) out.push_back(parse_group(j[i], path + "[" + std::to_string(i) + "]"));
+  std::vector<SessionHandle> out;
+  for (size_t i = 0; i < j.size(); ++i) out.push_back(parse_handle(j[i], path + "[" + std::to_string(i) + "]"));
   return out;
 }
 
@@ -150,13 +154,13 @@ const char* height_key(HeightUnit unit) {
   return unit == HeightUnit::Diagonal ? "half_thickness" : "height";
 }
 
-json prisms_json(const PrismSettings& p) {
+json prisms_json(const SessionPrisms& p) {
   return {{height_key(p.height_unit), p.height}, {"width", p.width}, {"normal_blend", p.normal_blend}};
 }
 
-PrismSettings parse_prisms(const json& j, const std::string& path) {
+SessionPrisms parse_prisms(const json& j, const std::string& path) {
   check_object(j, path, {"height", "half_thickness", "width", "normal_blend"});
-  PrismSettings p;
+  SessionPrisms p;
   if (j.contains("height") == j.contains("half_thickness"))
     fail(path, "expected exactly one of \"height\" and \"half_thickness\"");
   p.height_unit = j.contains("height") ? HeightUnit::MeanEdgeLength : HeightUnit::Diagonal;
@@ -172,7 +176,7 @@ PrismSettings parse_prisms(const json& j, const std::string& path) {
 }
 
 // Sparse factors: faces whose value is not 1.
-json sparse_factors(const FactorArray& f) {
+json sparse_factors(const FaceFactors& f) {
   json faces = json::array(), values = json::array();
   if (f)
     for (size_t i = 0; i < f->size(); ++i)
@@ -190,7 +194,7 @@ void parse_face_values(const json& j, const std::string& path, std::vector<int>&
 }
 
 // Faces go into arrays of unknown size here; apply_event checks them against the mesh.
-FactorArray sparse_to_array(const std::vector<int>& faces, const std::vector<double>& values) {
+FaceFactors sparse_to_array(const std::vector<int>& faces, const std::vector<double>& values) {
   if (faces.empty()) return nullptr;
   int n = 0;
   for (int f : faces) n = std::max(n, f + 1);
@@ -200,20 +204,20 @@ FactorArray sparse_to_array(const std::vector<int>& faces, const std::vector<dou
   return a;
 }
 
-const char* layer_name(PaintLayer l) { return l == PaintLayer::Height ? "height" : "width"; }
+const char* layer_name(FactorLayer l) { return l == FactorLayer::Height ? "height" : "width"; }
 
 json event_json(const SessionEvent& e) {
   json j = {{"t", e.t}, {"frame", e.frame}, {"type", event_type_name(e.type)}};
   switch (e.type) {
     case SessionEvent::Type::Handles: {
       json hs = json::array();
-      for (const HandleGroup& g : e.handles) hs.push_back(group_json(g));
+      for (const SessionHandle& g : e.handles) hs.push_back(handle_json(g));
       j["handles"] = hs;
       break;
     }
     case SessionEvent::Type::Targets: {
       json ps = json::array();
-      for (const SessionPose& p : e.poses) {
+      for (const SessionTarget& p : e.poses) {
         json pj = pose_json(p.pose);
         pj["handle"] = p.handle;
         ps.push_back(pj);
@@ -243,7 +247,7 @@ SessionEvent parse_event(const json& j, SessionEvent::Type type) {
   switch (type) {
     case SessionEvent::Type::Handles:
       check_object(j, "", {"t", "frame", "type", "handles"});
-      e.handles = parse_groups(member(j, "", "handles"), "handles");
+      e.handles = parse_handles(member(j, "", "handles"), "handles");
       break;
     case SessionEvent::Type::Targets: {
       check_object(j, "", {"t", "frame", "type", "poses"});
@@ -252,7 +256,7 @@ SessionEvent parse_event(const json& j, SessionEvent::Type type) {
       for (size_t i = 0; i < ps.size(); ++i) {
         const std::string p = "poses[" + std::to_string(i) + "]";
         check_object(ps[i], p, {"handle", "translate", "rotation"});
-        SessionPose sp;
+        SessionTarget sp;
         sp.handle = integer(member(ps[i], p, "handle"), at(p, "handle"));
         sp.pose.translate = vec3(member(ps[i], p, "translate"), at(p, "translate"));
         sp.pose.rotation = quaternion(member(ps[i], p, "rotation"), at(p, "rotation"));
@@ -263,8 +267,8 @@ SessionEvent parse_event(const json& j, SessionEvent::Type type) {
     case SessionEvent::Type::Factors: {
       check_object(j, "", {"t", "frame", "type", "layer", "faces", "values"});
       const json& l = member(j, "", "layer");
-      if (l == "height") e.layer = PaintLayer::Height;
-      else if (l == "width") e.layer = PaintLayer::Width;
+      if (l == "height") e.layer = FactorLayer::Height;
+      else if (l == "width") e.layer = FactorLayer::Width;
       else fail("layer", "expected \"height\" or \"width\"");
       parse_face_values(j, "", e.faces, e.values);
       break;
@@ -287,60 +291,7 @@ std::string read_file(const std::string& path) {
   return s.str();
 }
 
-void check_faces(const std::vector<int>& faces, int n_faces, const std::string& path, bool sorted) {
-  for (size_t i = 0; i < faces.size(); ++i) {
-    if (faces[i] < 0 || faces[i] >= n_faces)
-      fail(path + "[" + std::to_string(i) + "]",
-           "face " + std::to_string(faces[i]) + " out of range (the mesh has " +
-               std::to_string(n_faces) + " faces)");
-    if (sorted && i > 0 && faces[i] <= faces[i - 1])
-      fail(path + "[" + std::to_string(i) + "]", "faces must be sorted and distinct");
-  }
-}
-
-void check_groups(const std::vector<HandleGroup>& groups, int n_faces, const std::string& path) {
-  std::vector<int> owner(size_t(n_faces), -1);
-  for (size_t g = 0; g < groups.size(); ++g) {
-    const std::string p = path + "[" + std::to_string(g) + "]";
-    if (groups[g].faces->empty()) fail(at(p, "faces"), "a handle needs at least one face");
-    check_faces(*groups[g].faces, n_faces, at(p, "faces"), true);
-    for (int f : *groups[g].faces) {
-      if (owner[size_t(f)] >= 0)
-        fail(at(p, "faces"), "face " + std::to_string(f) + " is also in handle " +
-                                 std::to_string(owner[size_t(f)]));
-      owner[size_t(f)] = int(g);
-    }
-  }
-}
-
-FactorArray set_factors(const FactorArray& old, int n_faces, const std::vector<int>& faces,
-                        const std::vector<double>& values) {
-  auto a = old ? std::make_shared<std::vector<double>>(*old)
-               : std::make_shared<std::vector<double>>(size_t(n_faces), 1.0);
-  a->resize(size_t(n_faces), 1.0);
-  for (size_t i = 0; i < faces.size(); ++i) (*a)[size_t(faces[i])] = values[i];
-  if (std::all_of(a->begin(), a->end(), [](double v) { return v == 1.0; })) return nullptr;
-  return a;
-}
-
-bool same_group(const HandleGroup& a, const HandleGroup& b) {
-  return a.name == b.name && (a.faces == b.faces || *a.faces == *b.faces) && a.mode == b.mode &&
-         a.stiffness == b.stiffness && a.center == b.center && a.color == b.color;
-}
-
 }  // namespace
-
-const char* event_type_name(SessionEvent::Type type) {
-  switch (type) {
-    case SessionEvent::Type::Handles: return "handles";
-    case SessionEvent::Type::Targets: return "targets";
-    case SessionEvent::Type::Factors: return "factors";
-    case SessionEvent::Type::Prisms: return "prisms";
-    case SessionEvent::Type::Undo: return "undo";
-    case SessionEvent::Type::Redo: return "redo";
-  }
-  return "?";
-}
 
 Session parse_session(const std::string& text, const std::string& source) {
   const std::string src = source.empty() ? "session" : source;
@@ -413,7 +364,7 @@ Session parse_session(const std::string& text, const std::string& source) {
     const json& init = member(root, "", "initial");
     check_object(init, "initial", {"prisms", "handles", "height_factors", "width_factors"});
     s.initial.prisms = parse_prisms(member(init, "initial", "prisms"), "initial.prisms");
-    s.initial.handles = parse_groups(member(init, "initial", "handles"), "initial.handles");
+    s.initial.handles = parse_handles(member(init, "initial", "handles"), "initial.handles");
     for (const char* layer : {"height_factors", "width_factors"}) {
       if (!init.contains(layer)) continue;
       const std::string p = std::string("initial.") + layer;
@@ -425,7 +376,6 @@ Session parse_session(const std::string& text, const std::string& source) {
         if (faces[i] < 0) fail(p + ".faces[" + std::to_string(i) + "]", "negative face index");
       (layer[0] == 'h' ? s.initial.height_factor : s.initial.width_factor) = sparse_to_array(faces, values);
     }
-    s.initial.next_number = int(s.initial.handles.size()) + 1;
   } catch (const Error& e) {
     throw Error(src + ": " + e.what());
   }
@@ -486,7 +436,7 @@ std::string session_to_json(const Session& s, const std::string& session_path) {
     case SolverMethod::Default: break;
   }
   json handles = json::array();
-  for (const HandleGroup& g : s.initial.handles) handles.push_back(group_json(g));
+  for (const SessionHandle& g : s.initial.handles) handles.push_back(handle_json(g));
   const json initial = {{"prisms", prisms_json(s.initial.prisms)},
                         {"handles", handles},
                         {"height_factors", sparse_factors(s.initial.height_factor)},
@@ -507,155 +457,7 @@ std::string session_to_json(const Session& s, const std::string& session_path) {
 }
 
 void save_session(const Session& session, const std::string& path) {
-  app::write_text_atomically(path, session_to_json(session, path));
+  write_text_atomically(path, session_to_json(session, path));
 }
 
-void apply_event(EditState& state, const SessionEvent& e, int n_faces) {
-  switch (e.type) {
-    case SessionEvent::Type::Handles:
-      check_groups(e.handles, n_faces, "handles");
-      state.handles = e.handles;
-      if (state.active >= int(state.handles.size())) state.active = int(state.handles.size()) - 1;
-      break;
-    case SessionEvent::Type::Targets:
-      for (size_t i = 0; i < e.poses.size(); ++i) {
-        const int h = e.poses[i].handle;
-        if (h < 0 || h >= int(state.handles.size()))
-          fail("poses[" + std::to_string(i) + "].handle",
-               "no handle " + std::to_string(h) + " (there are " +
-                   std::to_string(state.handles.size()) + ")");
-        state.handles[size_t(h)].pose = e.poses[i].pose;
-      }
-      break;
-    case SessionEvent::Type::Factors: {
-      check_faces(e.faces, n_faces, "faces", false);
-      FactorArray& f = e.layer == PaintLayer::Height ? state.height_factor : state.width_factor;
-      f = set_factors(f, n_faces, e.faces, e.values);
-      break;
-    }
-    case SessionEvent::Type::Prisms: state.prisms = e.prisms; break;
-    case SessionEvent::Type::Undo:
-    case SessionEvent::Type::Redo: break;
-  }
-}
-
-EditState validate_session(const Session& s, int n_faces) {
-  const std::string src = s.source.empty() ? "session" : s.source;
-  EditState state = s.initial;
-  try {
-    check_groups(state.handles, n_faces, "initial.handles");
-    for (const FactorArray* f : {&state.height_factor, &state.width_factor})
-      if (*f && int((*f)->size()) > n_faces)
-        fail("initial", "a painted face is out of range (the mesh has " + std::to_string(n_faces) + " faces)");
-    if (state.height_factor) state.height_factor = set_factors(state.height_factor, n_faces, {}, {});
-    if (state.width_factor) state.width_factor = set_factors(state.width_factor, n_faces, {}, {});
-  } catch (const Error& e) {
-    throw Error(src + ": " + e.what());
-  }
-  for (size_t i = 0; i < s.events.size(); ++i) {
-    try {
-      apply_event(state, s.events[i], n_faces);
-    } catch (const Error& e) {
-      throw Error(src + ": events[" + std::to_string(i) + "] (" +
-                  event_type_name(s.events[i].type) + "): " + e.what());
-    }
-  }
-  return state;
-}
-
-// --- Recording -------------------------------------------------------------------------
-
-void SessionRecorder::start(const Document& doc, double now) {
-  recording_ = true;
-  session_ = Session{};
-  session_.mesh_path = doc.mesh_path;
-  session_.mesh = doc.mesh_path;
-  session_.solver = doc.solver;
-  session_.initial = doc.state;
-  session_.initial.selection = nullptr;
-  last_ = session_.initial;
-  t0_ = now;
-  frame_ = 0;
-  marker_this_frame_ = false;
-  undo_label_ = doc.history.undo_label();
-  redo_label_ = doc.history.redo_label();
-  history_size_ = doc.history.size();
-}
-
-void SessionRecorder::push(SessionEvent e, double now) {
-  e.t = std::max(0.0, now - t0_);
-  if (!session_.events.empty()) e.t = std::max(e.t, session_.events.back().t);
-  e.frame = frame_;
-  session_.events.push_back(std::move(e));
-}
-
-void SessionRecorder::note_undo(bool redo, double now) {
-  if (!recording_) return;
-  SessionEvent e;
-  e.type = redo ? SessionEvent::Type::Redo : SessionEvent::Type::Undo;
-  push(std::move(e), now);
-  marker_this_frame_ = true;
-}
-
-void SessionRecorder::observe(const Document& doc, double now) {
-  if (!recording_) return;
-  const EditState& s = doc.state;
-  const UndoStack& h = doc.history;
-  if (!marker_this_frame_ && h.size() == history_size_ && s == h.current()) {
-    if (!undo_label_.empty() && h.redo_label() == undo_label_ && h.undo_label() != undo_label_)
-      note_undo(false, now);
-    else if (!redo_label_.empty() && h.undo_label() == redo_label_ && h.redo_label() != redo_label_)
-      note_undo(true, now);
-  }
-  bool structure = s.handles.size() != last_.handles.size();
-  for (size_t i = 0; !structure && i < s.handles.size(); ++i)
-    structure = !same_group(s.handles[i], last_.handles[i]);
-  if (structure) {
-    SessionEvent e;
-    e.type = SessionEvent::Type::Handles;
-    e.handles = s.handles;
-    push(std::move(e), now);
-  } else {
-    SessionEvent e;
-    e.type = SessionEvent::Type::Targets;
-    for (size_t i = 0; i < s.handles.size(); ++i)
-      if (!(s.handles[i].pose == last_.handles[i].pose)) e.poses.push_back({int(i), s.handles[i].pose});
-    if (!e.poses.empty()) push(std::move(e), now);
-  }
-  for (PaintLayer layer : {PaintLayer::Height, PaintLayer::Width}) {
-    const FactorArray& now_f = layer_factors(s, layer);
-    const FactorArray& was_f = layer_factors(last_, layer);
-    if (now_f == was_f) continue;
-    SessionEvent e;
-    e.type = SessionEvent::Type::Factors;
-    e.layer = layer;
-    for (int f = 0; f < doc.n_faces(); ++f) {
-      const double v = factor_at(now_f, f);
-      if (v != factor_at(was_f, f)) e.faces.push_back(f), e.values.push_back(v);
-    }
-    if (!e.faces.empty()) push(std::move(e), now);
-  }
-  if (!(s.prisms == last_.prisms)) {
-    SessionEvent e;
-    e.type = SessionEvent::Type::Prisms;
-    e.prisms = s.prisms;
-    push(std::move(e), now);
-  }
-  last_.handles = s.handles;
-  last_.prisms = s.prisms;
-  last_.height_factor = s.height_factor;
-  last_.width_factor = s.width_factor;
-  undo_label_ = h.undo_label();
-  redo_label_ = h.redo_label();
-  history_size_ = h.size();
-  marker_this_frame_ = false;
-  ++frame_;
-}
-
-Session SessionRecorder::stop(const Document& doc, double now) {
-  if (recording_) observe(doc, now);
-  recording_ = false;
-  return session_;
-}
-
-}  // namespace primo::editor
+}  // namespace primo

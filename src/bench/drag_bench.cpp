@@ -1,0 +1,535 @@
+#include "drag_bench.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "drag_profile.h"
+#include "inputs.h"
+#include "machine.h"
+#include "primo/deformer.h"
+#include "primo/error.h"
+#include "primo/geometry.h"
+#include "primo/hierarchical_solver.h"
+#include "primo/mesh_io.h"
+#include "primo/mesh_subdivision.h"
+#include "primo/output_files.h"
+#include "primo/scenario.h"
+#include "primo/scenario_solve.h"
+#include "reach_pose.h"
+#include "report.h"
+
+namespace fs = std::filesystem;
+
+namespace primo::bench {
+namespace {
+
+constexpr double kDragConvergeTolerance = 1e-7;
+constexpr int kDragConvergeMaxIterations = 5000;
+constexpr double kPerceivedGap = 0.01;  // "within 1% of the converged energy"
+
+// A handle's way from rest to its target: transform(s) for s in [0, 1], the rotation angle
+// and the translation scaled by s about the same centre. s = 1 gives the scenario's transform.
+struct HandlePath {
+  Vec3 translate = Vec3::Zero();
+  Vec3 axis = Vec3::UnitZ();
+  double angle_deg = 0.0;
+  Vec3 center = Vec3::Zero();
+
+  RigidTransform at(double s) const {
+    return make_rigid_transform(s * translate, axis, s * angle_deg, center);
+  }
+};
+
+// Everything the runs need: the mesh after --mesh/--subdivide, prisms, handles at their final
+// transforms with their paths, and forces at their final offsets.
+struct DragCase {
+  std::string mesh_path;
+  Mesh mesh;
+  double load_seconds = 0.0;
+  double subdivide_seconds = 0.0;
+  std::string handles_from;
+  PrismParameters prisms;
+  std::vector<Handle> handles;
+  std::vector<HandlePath> paths;
+  std::vector<Force> forces;
+};
+
+// --- Setting up ---------------------------------------------------------------------------------
+
+DragCase make_drag_case(const Scenario& scenario, const std::string& mesh_path,
+                        const DragBenchOptions& args) {
+  DragCase c;
+  c.mesh_path = mesh_path;
+  auto start = Clock::now();
+  c.mesh = load_mesh(mesh_path);
+  c.load_seconds = seconds_since(start);
+  if (args.subdivide > 0) {
+    start = Clock::now();
+    c.mesh = loop_subdivide(c.mesh, args.subdivide, mesh_path);
+    c.subdivide_seconds = seconds_since(start);
+  }
+
+  if (args.bbox_handles) {
+    // Only the scenario's global prism parameters are kept: its regions, handles and forces
+    // select faces of its own mesh.
+    Scenario prisms_only = scenario;
+    prisms_only.regions.clear();
+    prisms_only.handles.clear();
+    prisms_only.forces.clear();
+    c.prisms = resolve_scenario(prisms_only, c.mesh).prisms;
+    const ReachPose pose = make_reach_pose(c.mesh, mesh_path);
+    c.handles = pose.handles();
+    c.paths = {HandlePath{}, HandlePath{pose.translate, pose.axis, pose.angle_deg,
+                                        pose.top_centroid}};
+    c.handles_from = "bounding box (--bbox-handles)";
+    return c;
+  }
+
+  ResolvedScenario resolved = resolve_scenario(scenario, c.mesh);
+  c.prisms = std::move(resolved.prisms);
+  c.handles = std::move(resolved.handles);
+  c.forces = std::move(resolved.forces);
+  const FaceGeometry geometry = compute_face_geometry(c.mesh);
+  for (size_t i = 0; i < c.handles.size(); ++i) {
+    const TransformSpec& t = scenario.handles[i].transform;
+    c.paths.push_back({t.translate, t.axis, t.angle_deg,
+                       t.center ? *t.center : area_weighted_centroid(geometry, c.handles[i].faces)});
+  }
+  c.handles_from = "scenario";
+  return c;
+}
+
+SolveMethod drag_method(const std::string& name) {
+  if (name == "global") return SolveMethod::Global;
+  if (name == "local") return SolveMethod::Local;
+  return SolveMethod::Hierarchical;
+}
+
+// --- Measuring ----------------------------------------------------------------------------------
+
+struct DragRun {
+  int faces = 0;
+  int vertices = 0;
+  double setup_seconds = 0.0;  // Deformer construction
+  double solver_setup_seconds = 0.0;  // Deformer::prepare: hierarchy, symbolic analysis
+  std::vector<double> frame_seconds;
+  std::vector<double> frame_energies;
+  Breakdown first_frame;
+  Breakdown later_frames;  // sum over frames 2..N
+  double energy_evaluation_seconds = 0.0;
+  int drag_factor_lag = 0;  // steps of the background refreshes during the drag
+  int foreground_factorizations = 0, background_factorizations = 0;  // during the drag
+  double background_factorization_seconds = 0.0;
+  std::vector<int> level_bodies;  // hierarchical: bodies per level, fine first
+  SolveReport converge;
+  Breakdown converge_profile;
+  double memory_after_drag_mb = 0.0;
+  double memory_after_converge_mb = 0.0;
+};
+
+struct FullSolveRun {
+  double setup_seconds = 0.0;
+  double hierarchy_build_seconds = -1.0;  // hierarchical only, timed on a separate solver
+  SolveReport report;
+  Breakdown profile;
+  int iterations_to_perceived = -1;
+  double seconds_to_perceived = -1.0;
+  double memory_after_mb = 0.0;
+};
+
+void set_targets(Deformer& deformer, const DragCase& c, double s) {
+  for (size_t i = 0; i < c.paths.size(); ++i) deformer.set_handle_transform(int(i), c.paths[i].at(s));
+  for (size_t j = 0; j < c.forces.size(); ++j)
+    deformer.set_force_offset(int(j), s * c.forces[j].target_offset);
+}
+
+double g_sink = 0.0;  // keeps the vertex read from being optimized away
+
+// The drag on `deformer` (made with the final targets): targets back to rest, then N frames.
+void run_frames(Deformer& deformer, const DragCase& c, const SolveOptions& base, int frames,
+                DragRun& run) {
+  set_targets(deformer, c, 0.0);  // every handle and force back at rest
+  deformer.reset();
+  // The editor sets the solver up when the handles are made, before they are dragged.
+  const auto setup_start = Clock::now();
+  deformer.prepare(base);
+  run.solver_setup_seconds = seconds_since(setup_start);
+  const SolverClock after_setup = SolverClock::read(deformer);
+
+  SolveOptions frame = base;
+  frame.max_iterations = 1;
+  frame.tolerance = 0.0;
+  for (int k = 1; k <= frames; ++k) {
+    const SolverClock before = SolverClock::read(deformer);
+    const auto t0 = Clock::now();
+    set_targets(deformer, c, double(k) / frames);
+    const auto t1 = Clock::now();
+    const SolveReport report = deformer.solve(frame);
+    const auto t2 = Clock::now();
+    const std::vector<Vec3> positions = deformer.vertex_positions();
+    const auto t3 = Clock::now();
+    g_sink += positions.empty() ? 0.0 : positions.back().x();
+
+    Breakdown& b = k == 1 ? run.first_frame : run.later_frames;
+    b.total += std::chrono::duration<double>(t3 - t0).count();
+    b.set_targets += std::chrono::duration<double>(t1 - t0).count();
+    b.vertex_update += std::chrono::duration<double>(t3 - t2).count();
+    b.add_solver(before, SolverClock::read(deformer));
+    run.frame_seconds.push_back(std::chrono::duration<double>(t3 - t0).count());
+    run.frame_energies.push_back(report.energy);
+  }
+  if (const HierarchicalSolver* h = deformer.hierarchical_solver()) {
+    for (int l = 0; l < h->levels(); ++l) run.level_bodies.push_back(h->bodies(l));
+    run.drag_factor_lag = h->drag_factor_lag();
+  }
+  const SolverClock after_drag = SolverClock::read(deformer);
+  run.foreground_factorizations =
+      after_drag.newton.factorizations - after_setup.newton.factorizations;
+  run.background_factorizations = after_drag.newton.background_factorizations;
+  run.background_factorization_seconds = after_drag.newton.background_factorization;
+
+  // One pass over all joints, for reading "other": a hierarchical cycle makes one after its
+  // sweeps (Deformer::solve carries the energy through handle moves instead of a pass).
+  const auto start = Clock::now();
+  constexpr int kEvaluations = 5;
+  for (int i = 0; i < kEvaluations; ++i)
+    g_sink += deformer.system().energy(deformer.body_states());
+  run.energy_evaluation_seconds = seconds_since(start) / kEvaluations;
+  run.memory_after_drag_mb = peak_memory_mb();
+}
+
+// After the last frame: on with the same method to the convergence tolerance.
+void run_converge(Deformer& deformer, const SolveOptions& base, DragRun& run) {
+  SolveOptions converge = base;
+  converge.max_iterations = kDragConvergeMaxIterations;
+  converge.tolerance = kDragConvergeTolerance;
+  const SolverClock before = SolverClock::read(deformer);
+  const auto start = Clock::now();
+  run.converge = deformer.solve(converge);
+  run.converge_profile.total = seconds_since(start);
+  run.converge_profile.add_solver(before, SolverClock::read(deformer));
+  run.memory_after_converge_mb = peak_memory_mb();
+}
+
+// A fresh deformer with the final targets (its initial state), solved to convergence; then,
+// on another fresh one, the same solve cut off at the first iteration within 1% of the
+// converged energy, timed: the iterations are deterministic, so it is the same path.
+FullSolveRun run_full_solve(const DragCase& c, const SolveOptions& base) {
+  FullSolveRun run;
+  const SolveMethod method = base.method;
+  SolveOptions options = base;
+  options.max_iterations = kDragConvergeMaxIterations;
+  options.tolerance = kDragConvergeTolerance;
+  {
+    auto start = Clock::now();
+    Deformer deformer(c.mesh, c.prisms, c.handles, c.forces);
+    run.setup_seconds = seconds_since(start);
+    if (method == SolveMethod::Hierarchical) {
+      start = Clock::now();
+      { HierarchicalSolver build_only(deformer.system(), options.hierarchical); }
+      run.hierarchy_build_seconds = seconds_since(start);
+    }
+    const SolverClock before = SolverClock::read(deformer);
+    start = Clock::now();
+    run.report = deformer.solve(options);
+    run.profile.total = seconds_since(start);
+    run.profile.add_solver(before, SolverClock::read(deformer));
+  }
+  const double target = (1.0 + kPerceivedGap) * run.report.energy;
+  for (size_t k = 0; k < run.report.energies.size(); ++k)
+    if (run.report.energies[k] <= target) {
+      run.iterations_to_perceived = int(k) + 1;
+      break;
+    }
+  if (run.report.initial_energy <= target) run.iterations_to_perceived = 0;
+  if (run.iterations_to_perceived > 0) {
+    Deformer deformer(c.mesh, c.prisms, c.handles, c.forces);
+    SolveOptions cut = options;
+    cut.max_iterations = run.iterations_to_perceived;
+    run.seconds_to_perceived = deformer.solve(cut).seconds;
+  } else if (run.iterations_to_perceived == 0) {
+    run.seconds_to_perceived = 0.0;
+  }
+  run.memory_after_mb = peak_memory_mb();
+  return run;
+}
+
+}  // namespace
+
+int run_drag_bench(const DragBenchOptions& args) {
+  check_json_folder(args.json);
+  const Scenario scenario = load_scenario(args.scenario);
+  const SolveMethod method = drag_method(args.solver);
+  const std::string build = build_label();
+  const std::vector<double> load_before = load_average();
+  const char* blas_threads = std::getenv("OPENBLAS_NUM_THREADS");
+
+  nlohmann::json out;
+  out["scenario"] = args.scenario;
+  out["build"] = build;
+  out["solver"] = solve_method_name(method);
+  out["frames"] = args.frames;
+  out["subdivide"] = args.subdivide;
+  out["bbox_handles"] = args.bbox_handles;
+  std::printf("primo bench drag %s  [build: %s]\n\n", args.scenario.c_str(), build.c_str());
+
+  std::string mesh_path = scenario.mesh_path;
+  if (!args.mesh.empty()) {
+    mesh_path = locate_mesh(args.mesh);
+    if (mesh_path.empty() && fs::path(args.mesh).has_parent_path())
+      throw Error(args.mesh + ": no such mesh file");
+    if (mesh_path.empty()) {  // a shared mesh that is not there: skip, as bench engine does
+      const std::string skipped = "skipped: " + args.mesh +
+                                  " not found (neither as a path nor in a shared/meshes folder "
+                                  "above the working directory or the executable)";
+      std::printf("%s\n", skipped.c_str());
+      out["skipped"] = skipped;
+      if (!args.json.empty()) write_text_atomically(args.json, out.dump(2) + "\n");
+      return 0;
+    }
+  }
+
+  const DragCase c = make_drag_case(scenario, mesh_path, args);
+  const double memory_after_mesh = peak_memory_mb();
+  std::printf("Mesh       %s", mesh_path.c_str());
+  if (args.subdivide > 0) std::printf(" + %d Loop steps", args.subdivide);
+  std::printf(": %d faces, %d vertices (load %.2f s", int(c.mesh.n_faces()),
+              int(c.mesh.n_vertices()), c.load_seconds);
+  if (args.subdivide > 0) std::printf(", subdivide %.2f s", c.subdivide_seconds);
+  std::printf(")\n");
+  std::printf("Handles    from the %s:", c.handles_from.c_str());
+  for (const Handle& h : c.handles)
+    std::printf(" %s (%zu faces)", h.name.empty() ? "-" : h.name.c_str(), h.faces.size());
+  std::printf("; %zu forces\n", c.forces.size());
+  std::printf("Solver     %s, %d frames of one iteration each%s\n", solve_method_name(method),
+              args.frames, args.drag_only ? " (--drag-only)" : "");
+  SolveOptions base;
+  base.method = method;
+  base.hierarchical = args.hierarchical;
+  // The full solve from rest is the one-step solve the drag's figures have always been
+  // compared with (docs/performance.md); a drag's frames are small steps either way.
+  base.path.enabled = false;
+  const HierarchicalOptions defaults;
+  const bool tuned = args.hierarchical.hierarchy.coarsest_max_bodies !=
+                         defaults.hierarchy.coarsest_max_bodies ||
+                     args.hierarchical.hierarchy.cluster_size != defaults.hierarchy.cluster_size ||
+                     args.hierarchical.sweeps_per_level != defaults.sweeps_per_level ||
+                     args.hierarchical.intermediate_sweeps != defaults.intermediate_sweeps ||
+                     args.hierarchical.coarse_iterations != defaults.coarse_iterations ||
+                     args.hierarchical.intermediate_cycles != defaults.intermediate_cycles ||
+                     args.hierarchical.coarse_factor_reuse != defaults.coarse_factor_reuse ||
+                     args.hierarchical.drag_factor_reuse != defaults.drag_factor_reuse ||
+                     args.hierarchical.drag_factor_lag != defaults.drag_factor_lag ||
+                     args.hierarchical.intermediate_relaxation != defaults.intermediate_relaxation ||
+                     args.hierarchical.acceleration_history != defaults.acceleration_history;
+  const nlohmann::json settings = {
+      {"cluster_size", args.hierarchical.hierarchy.cluster_size},
+      {"coarsest_max_bodies", args.hierarchical.hierarchy.coarsest_max_bodies},
+      {"fine_sweeps", args.hierarchical.sweeps_per_level},
+      {"intermediate_sweeps", args.hierarchical.intermediate_sweeps},
+      {"coarse_iterations", args.hierarchical.coarse_iterations},
+      {"intermediate_cycles", args.hierarchical.intermediate_cycles},
+      {"coarse_factor_reuse", args.hierarchical.coarse_factor_reuse},
+      {"drag_factor_reuse", args.hierarchical.drag_factor_reuse},
+      {"drag_factor_lag", args.hierarchical.drag_factor_lag},
+      {"intermediate_relaxation", args.hierarchical.intermediate_relaxation},
+      {"acceleration_history", args.hierarchical.acceleration_history},
+      {"core_defaults", !tuned}};
+  if (method == SolveMethod::Hierarchical) {
+    out["hierarchical_settings"] = settings;
+    std::string drag_refresh;
+    if (args.hierarchical.drag_factor_lag != 0) {
+      drag_refresh = "; during a drag " + std::to_string(args.hierarchical.drag_factor_reuse) +
+                     " times, refreshed in the background";
+      if (args.hierarchical.drag_factor_lag > 0)
+        drag_refresh += " for " + std::to_string(args.hierarchical.drag_factor_lag) + " steps";
+    }
+    std::printf("           hierarchy: clusters of %d, coarsest <= %d bodies, %d fine sweeps, %d "
+                "intermediate sweeps x %d visits, %d coarse Newton iterations per cycle, a "
+                "coarse factorization reused up to %d times%s%s\n",
+                args.hierarchical.hierarchy.cluster_size,
+                args.hierarchical.hierarchy.coarsest_max_bodies,
+                args.hierarchical.sweeps_per_level, args.hierarchical.intermediate_sweeps,
+                args.hierarchical.intermediate_cycles, args.hierarchical.coarse_iterations,
+                args.hierarchical.coarse_factor_reuse, drag_refresh.c_str(),
+                tuned ? " (NOT the core's defaults)" : "");
+  }
+  std::printf("\n");
+  std::fflush(stdout);
+
+  // 1: the drag, then on to convergence.
+  DragRun drag;
+  drag.faces = int(c.mesh.n_faces());
+  drag.vertices = int(c.mesh.n_vertices());
+  {
+    const auto start = Clock::now();
+    Deformer deformer(c.mesh, c.prisms, c.handles, c.forces);
+    drag.setup_seconds = seconds_since(start);
+    run_frames(deformer, c, base, args.frames, drag);
+
+    const double median_ms = 1e3 * median_of(drag.frame_seconds);
+    const double max_ms =
+        1e3 * *std::max_element(drag.frame_seconds.begin(), drag.frame_seconds.end());
+    const double max_later_ms =
+        drag.frame_seconds.size() > 1
+            ? 1e3 * *std::max_element(drag.frame_seconds.begin() + 1, drag.frame_seconds.end())
+            : max_ms;
+    if (!drag.level_bodies.empty()) {
+      std::printf("Hierarchy  %zu levels, bodies:", drag.level_bodies.size());
+      for (size_t l = 0; l < drag.level_bodies.size(); ++l)
+        std::printf("%s %d", l ? " ->" : "", drag.level_bodies[l]);
+      if (drag.drag_factor_lag > 0)
+        std::printf("; coarse factors refreshed in the background during the drag, taking over "
+                    "%d coarse steps later", drag.drag_factor_lag);
+      std::printf("\n\n");
+      out["drag_factor_lag"] = drag.drag_factor_lag;
+    }
+    std::printf("Drag (%d frames; deformer setup %.3f s and solver setup %.3f s before the "
+                "drag, as in the editor, not in the frames)\n",
+                args.frames, drag.setup_seconds, drag.solver_setup_seconds);
+    std::printf("  %8s %10s %10s %10s %10s %14s\n", "faces", "median ms", "max ms", "first ms",
+                "max 2..N", "final energy");
+    std::printf("  %8d %10.2f %10.2f %10.2f %10.2f %14.6e\n\n", drag.faces, median_ms, max_ms,
+                1e3 * drag.frame_seconds.front(), max_later_ms, drag.frame_energies.back());
+    std::fflush(stdout);
+    out["frame_seconds"] = drag.frame_seconds;
+    out["frame_energies"] = drag.frame_energies;
+    out["median_ms"] = median_ms;
+    out["max_ms"] = max_ms;
+    out["first_frame_ms"] = 1e3 * drag.frame_seconds.front();
+    out["max_ms_after_first"] = max_later_ms;
+    out["final_energy"] = drag.frame_energies.back();
+
+    if (!args.drag_only) {
+      run_converge(deformer, base, drag);
+      const double final_energy = drag.frame_energies.back();
+      const double converged = drag.converge.energy;
+      const double gap = converged > 0 ? final_energy / converged - 1.0 : 0.0;
+      std::printf("Solving on after the last frame (relative change %.0e, at most %d iterations)\n",
+                  kDragConvergeTolerance, kDragConvergeMaxIterations);
+      std::printf("  %14s %14s %10s %10s %6s  %s\n", "final energy", "converged E", "gap %",
+                  "seconds", "iters", "stop");
+      std::printf("  %14.6e %14.6e %10.3f %10.3f %6d  %s\n\n", final_energy, converged,
+                  100.0 * gap, drag.converge.seconds, drag.converge.iterations,
+                  drag.converge.stop_reason.c_str());
+      out["converged_energy"] = converged;
+      out["final_gap"] = gap;
+      out["converge_seconds"] = drag.converge.seconds;
+      out["converge_iterations"] = drag.converge.iterations;
+      out["converge_stop_reason"] = drag.converge.stop_reason;
+      out["converge_tolerance"] = kDragConvergeTolerance;
+      out["converge_max_iterations"] = kDragConvergeMaxIterations;
+    }
+  }
+
+  const int later = int(drag.frame_seconds.size()) - 1;
+  std::printf("Where the time goes (ms; 'coarse' contains the coarse Newton columns after it)\n");
+  std::printf("  %-22s %9s %8s %8s %8s %8s %8s %8s %8s %8s %8s %8s %8s\n", "", "total",
+              "targets", "restr+pr", "coarse", "assembly", "factor", "solve", "line srch",
+              "sweeps", "accel", "vertices", "other");
+  print_breakdown_row("first frame", drag.first_frame, method);
+  if (later > 0) print_breakdown_row("per frame, 2..N", drag.later_frames.per(later), method);
+  if (!args.drag_only) print_breakdown_row("converge (total)", drag.converge_profile, method);
+  std::printf("  (one energy evaluation: %.2f ms)\n", 1e3 * drag.energy_evaluation_seconds);
+  std::printf("  (factorizations during the drag: %d in the foreground, %d on a background thread "
+              "taking %.0f ms there, not counted above)\n\n",
+              drag.foreground_factorizations, drag.background_factorizations,
+              1e3 * drag.background_factorization_seconds);
+  std::fflush(stdout);
+  nlohmann::json profile;
+  profile["first_frame_ms"] = drag.first_frame.to_json_ms();
+  profile["per_frame_ms"] = drag.later_frames.per(later).to_json_ms();
+  profile["per_frame_frames"] = later;
+  profile["energy_evaluation_ms"] = 1e3 * drag.energy_evaluation_seconds;
+  profile["drag_foreground_factorizations"] = drag.foreground_factorizations;
+  profile["drag_background_factorizations"] = drag.background_factorizations;
+  profile["drag_background_factorization_ms"] = 1e3 * drag.background_factorization_seconds;
+  if (!args.drag_only) profile["converge_ms"] = drag.converge_profile.to_json_ms();
+
+  // 2: the final pose from rest.
+  FullSolveRun full;
+  if (!args.drag_only) {
+    std::printf("Full solve from rest (final targets; relative change %.0e) ...\n",
+                kDragConvergeTolerance);
+    std::fflush(stdout);
+    full = run_full_solve(c, base);
+    std::printf("  %8s %9s %9s %9s %6s %12s %14s  %s\n", "setup s", "hier. s", "solve s",
+                "to 1% s", "iters", "iters to 1%", "energy", "stop");
+    std::printf("  %8.3f %9.3f %9.3f %9.3f %6d %12d %14.6e  %s\n", full.setup_seconds,
+                full.hierarchy_build_seconds, full.report.seconds, full.seconds_to_perceived,
+                full.report.iterations, full.iterations_to_perceived, full.report.energy,
+                full.report.stop_reason.c_str());
+    print_breakdown_row("full solve (total)", full.profile, method);
+    std::printf("\n");
+    out["full_solve"] = {{"setup_seconds", full.setup_seconds},
+                         {"hierarchy_build_seconds", full.hierarchy_build_seconds},
+                         {"seconds", full.report.seconds},
+                         {"iterations", full.report.iterations},
+                         {"initial_energy", full.report.initial_energy},
+                         {"energy", full.report.energy},
+                         {"stop_reason", full.report.stop_reason},
+                         {"energies", full.report.energies},
+                         {"within", kPerceivedGap},
+                         {"iterations_to_within", full.iterations_to_perceived},
+                         {"seconds_to_within", full.seconds_to_perceived}};
+    profile["full_solve_ms"] = full.profile.to_json_ms();
+  }
+  out["profile"] = profile;
+
+  const double peak = peak_memory_mb();
+  std::printf("Peak memory (ru_maxrss)  %.1f MB: after mesh %.1f, after drag %.1f", peak,
+              memory_after_mesh, drag.memory_after_drag_mb);
+  if (!args.drag_only)
+    std::printf(", after converge %.1f, after full solves %.1f", drag.memory_after_converge_mb,
+                full.memory_after_mb);
+  std::printf("\n\n");
+  out["peak_memory_mb"] = peak;
+  out["memory_mb"] = {{"after_mesh", memory_after_mesh}, {"after_drag", drag.memory_after_drag_mb}};
+  if (!args.drag_only) {
+    out["memory_mb"]["after_converge"] = drag.memory_after_converge_mb;
+    out["memory_mb"]["after_full_solves"] = full.memory_after_mb;
+  }
+
+  const std::vector<double> load_after = load_average();
+  const std::string cpu = cpu_model();
+  const unsigned threads = std::thread::hardware_concurrency();
+  const std::vector<std::string> blas = mapped_blas_libraries();
+  std::printf("Machine    %s, %u hardware threads, OPENBLAS_NUM_THREADS=%s\n", cpu.c_str(),
+              threads, blas_threads ? blas_threads : "(unset)");
+  std::printf("           load average (1 min) before %.2f, after %.2f\n", load_before[0],
+              load_after[0]);
+  for (const std::string& b : blas) std::printf("           BLAS %s\n", b.c_str());
+  std::fflush(stdout);
+
+  out["mesh"] = mesh_path;
+  out["faces"] = drag.faces;
+  out["vertices"] = drag.vertices;
+  out["handles_from"] = c.handles_from;
+  out["handles"] = nlohmann::json::array();
+  for (const Handle& h : c.handles)
+    out["handles"].push_back({{"name", h.name}, {"faces", h.faces.size()}});
+  out["forces"] = c.forces.size();
+  out["load_seconds"] = c.load_seconds;
+  out["subdivide_seconds"] = c.subdivide_seconds;
+  out["setup_seconds"] = drag.setup_seconds;
+  out["solver_setup_seconds"] = drag.solver_setup_seconds;
+  out["hierarchy_bodies"] = drag.level_bodies;
+  out["drag_only"] = args.drag_only;
+  out["machine"] = {{"cpu_model", cpu},
+                    {"hardware_threads", threads},
+                    {"blas_libraries", blas},
+                    {"openblas_num_threads", blas_threads ? blas_threads : ""},
+                    {"load_average_before", load_before},
+                    {"load_average_after", load_after}};
+  if (!args.json.empty()) write_text_atomically(args.json, out.dump(2) + "\n");
+  return 0;
+}
+
+}  // namespace primo::bench

@@ -1,0 +1,32 @@
+#pragma once
+// `primo bench drag SCENARIO.json [--frames N] [--solver S] [--json FILE] [--mesh MESH]
+//                   [--subdivide K] [--bbox-handles] [--drag-only] [hierarchical settings]`
+//
+// An interactive drag: every handle goes from rest to its scenario transform in N equal steps,
+// with one solver iteration (one hierarchical cycle, one global Newton iteration or one local
+// sweep) and one read of the vertex positions per frame, as the editor does while a handle is
+// dragged. Then the solve continues to convergence, and a fresh deformer solves the final pose
+// from rest. docs/performance.md describes every figure.
+
+#include <string>
+
+#include "primo/hierarchical_solver.h"
+
+namespace primo::bench {
+
+struct DragBenchOptions {
+  std::string scenario;
+  int frames = 60;
+  std::string solver = "hierarchical";  // "hierarchical", "global" or "local"
+  std::string json;
+  std::string mesh;  // instead of the scenario's; a bare file name is looked up in shared/meshes
+  int subdivide = 0;  // Loop subdivision steps first
+  bool bbox_handles = false;  // the reach pose (reach_pose.h) instead of the scenario's handles
+  bool drag_only = false;  // no convergence afterwards, no full solve: for repeated timings
+  HierarchicalOptions hierarchical;  // the core's defaults unless the experiment flags say otherwise
+};
+
+// Prints the tables; returns the exit code. Throws primo::Error on bad options or files.
+int run_drag_bench(const DragBenchOptions& options);
+
+}  // namespace primo::bench

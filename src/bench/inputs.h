@@ -1,0 +1,21 @@
+#pragma once
+// Where the benchmarks find their inputs: the meshes of ../shared/meshes (third-party, not
+// shipped with the repository) from wherever `primo` runs, and the shipped assets.
+
+#include <string>
+
+namespace primo::bench {
+
+// The path of `name` in a `shared/meshes` folder above the working directory or the
+// executable (either may be inside the repository), or "" when there is none.
+std::string find_shared_mesh(const std::string& name);
+
+// `mesh` as given when it is a file, else a bare file name looked up with find_shared_mesh;
+// "" if neither.
+std::string locate_mesh(const std::string& mesh);
+
+// The repository's assets/ folder (compiled in; PRIMO_ASSET_DIR overrides it, as for the
+// editor): `primo bench quality` runs the scenarios of assets/scenarios/quality by default.
+std::string asset_dir();
+
+}  // namespace primo::bench

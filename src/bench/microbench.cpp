@@ -1,0 +1,169 @@
+// Micro-benchmarks of the engine's inner loops with Google Benchmark (docs/performance.md,
+// "Micro-benchmarks"). Where `primo bench engine` reports whole-solve throughput against the
+// paper's figures, these time one kernel each, so that a change to it shows up on its own:
+//
+//  - HornRotation: Horn's closed-form rotation of one 3x3 cross-covariance (horn.h), the core
+//    of every local match;
+//  - LocalMatch: one body's match against its neighbours (local_solver.h, paper Sect. 4.1);
+//  - LocalSweep / PlannedSweep: one Gauss-Seidel sweep over every body, plain and the solvers'
+//    two-thread planned sweep;
+//  - GlobalAssembly: assembling the global Gauss-Newton system (global_solver.h, Sect. 4.2),
+//    timed by the solver's own assembly clock so that the factorization that follows is not
+//    counted (10 iterations each, which take a few seconds in all because of it).
+//
+// The mesh is the limb of `primo bench engine`: a quad cylinder of radius 0.25 and length 2
+// along y (mesh_generators.h), its bottom band fixed and its top band bent 90 degrees. The
+// argument is the number of bands (40 segments around each), so faces = 40 x bands.
+//
+//   build/src/primo_microbench                      # everything, in about 10 s
+//   build/src/primo_microbench --benchmark_filter=Sweep --benchmark_min_time=2
+
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <memory>
+#include <random>
+#include <vector>
+
+#include "primo/deformer.h"
+#include "primo/geometry.h"
+#include "primo/global_solver.h"
+#include "primo/horn.h"
+#include "primo/local_solver.h"
+#include "primo/mesh_generators.h"
+
+namespace {
+
+using namespace primo;
+
+constexpr double kRadius = 0.25;
+constexpr double kLength = 2.0;
+constexpr int kSegments = 40;
+
+// The bent limb, made once per size and shared by the benchmarks of that size.
+struct Limb {
+  Mesh mesh;
+  Deformer deformer;
+  std::vector<BodyState> state;  // a few sweeps from the start: every body has moved
+  int moving_bodies = 0;
+
+  static Deformer make_deformer(const Mesh& mesh, int bands) {
+    const FaceGeometry faces = compute_face_geometry(mesh);
+    const double band = kLength / bands;
+    std::vector<int> bottom, top;
+    for (int f = 0; f < int(faces.centroid.size()); ++f) {
+      if (faces.centroid[f].y() < band) bottom.push_back(f);
+      if (faces.centroid[f].y() > kLength - band) top.push_back(f);
+    }
+    // The top turned 90 degrees towards +x and moved to where a constant-curvature bend of
+    // the same length puts it (as `primo bench engine` bends it).
+    const Vec3 top_centre(0.0, kLength, 0.0);
+    const double arc_radius = kLength / (M_PI / 2.0);
+    const RigidTransform bend = make_rigid_transform(Vec3(arc_radius, arc_radius, 0.0) - top_centre,
+                                                     Vec3::UnitZ(), -90.0, top_centre);
+    std::vector<Handle> handles = {{"bottom", bottom, Fix::All, RigidTransform::identity()},
+                                   {"top", top, Fix::All, bend}};
+    return Deformer(mesh, PrismParameters{}, std::move(handles));
+  }
+
+  explicit Limb(int bands)
+      : mesh(make_cylinder(kRadius, kLength, kSegments, bands, FaceShape::Quads)),
+        deformer(make_deformer(mesh, bands)),
+        state(deformer.body_states()) {
+    for (int i = 0; i < 3; ++i) local_sweep(deformer.system(), state);
+    for (const auto& body : deformer.system().bodies)
+      if (body.kind != BodyKind::Fixed) ++moving_bodies;
+  }
+
+  static const Limb& of(int bands) {
+    static std::vector<std::unique_ptr<Limb>> made;
+    for (const auto& limb : made)
+      if (int(limb->mesh.n_faces()) == kSegments * bands) return *limb;
+    made.push_back(std::make_unique<Limb>(bands));
+    return *made.back();
+  }
+};
+
+void HornRotation(benchmark::State& run) {
+  // Cross-covariances of slightly rotated point sets, as a match sees them.
+  std::mt19937 random(1);
+  std::normal_distribution<double> noise(0.0, 1.0);
+  std::vector<Mat3> S(64);
+  for (Mat3& s : S) {
+    const Mat3 R = Eigen::AngleAxisd(0.3 * noise(random), Vec3(noise(random), noise(random),
+                                                                  noise(random)).normalized())
+                       .toRotationMatrix();
+    s.setZero();
+    for (int k = 0; k < 8; ++k) {
+      const Vec3 p(noise(random), noise(random), noise(random));
+      s += p * (R * p).transpose();
+    }
+  }
+  size_t i = 0;
+  for (auto _ : run) benchmark::DoNotOptimize(horn_rotation(S[i++ & 63]));
+  run.SetItemsProcessed(run.iterations());
+}
+BENCHMARK(HornRotation);
+
+void LocalMatch(benchmark::State& run) {
+  const Limb& limb = Limb::of(int(run.range(0)));
+  const RigidSystem& system = limb.deformer.system();
+  std::vector<int> moving;
+  for (int b = 0; b < system.n_bodies(); ++b)
+    if (system.bodies[size_t(b)].kind != BodyKind::Fixed) moving.push_back(b);
+  size_t i = 0;
+  for (auto _ : run) {
+    benchmark::DoNotOptimize(local_match(system, limb.state, moving[i]));
+    if (++i == moving.size()) i = 0;
+  }
+  run.SetItemsProcessed(run.iterations());  // matches per second
+}
+BENCHMARK(LocalMatch)->Arg(60);
+
+void LocalSweep(benchmark::State& run) {
+  const Limb& limb = Limb::of(int(run.range(0)));
+  std::vector<BodyState> state = limb.state;
+  for (auto _ : run) {
+    local_sweep(limb.deformer.system(), state);
+    benchmark::ClobberMemory();
+  }
+  run.SetItemsProcessed(run.iterations() * limb.moving_bodies);  // matches per second
+  run.counters["faces"] = double(limb.mesh.n_faces());
+}
+BENCHMARK(LocalSweep)->Arg(60)->Arg(240)->Unit(benchmark::kMicrosecond);
+
+void PlannedSweep(benchmark::State& run) {
+  const Limb& limb = Limb::of(int(run.range(0)));
+  const RigidSystem& system = limb.deformer.system();
+  const SweepPlan plan = plan_sweep(system, /*parallel=*/true);
+  std::vector<BodyState> state = limb.state;
+  for (auto _ : run) {
+    planned_sweep(system, plan, state);
+    benchmark::ClobberMemory();
+  }
+  run.SetItemsProcessed(run.iterations() * limb.moving_bodies);
+  run.counters["faces"] = double(limb.mesh.n_faces());
+}
+BENCHMARK(PlannedSweep)->Arg(60)->Arg(240)->Unit(benchmark::kMicrosecond)->UseRealTime();
+
+// factorize_at assembles and then factorizes; only the assembly is reported, read from the
+// solver's assembly clock (manual time), so the figure is the assembly's alone. The numeric
+// factorization after it costs tens of times more, so the iterations are few and fixed, and it
+// runs on one thread (BLAS threads waiting between factorizations would only add noise).
+void GlobalAssembly(benchmark::State& run) {
+  const Limb& limb = Limb::of(int(run.range(0)));
+  GlobalSolver solver(limb.deformer.system(), GlobalSolver::Factorization::SupernodalOneThread);
+  solver.factorize_at(limb.state);  // the symbolic analysis, once
+  for (auto _ : run) {
+    const double before = solver.timings().assembly;
+    solver.factorize_at(limb.state);
+    run.SetIterationTime(solver.timings().assembly - before);
+  }
+  run.SetItemsProcessed(run.iterations() * limb.moving_bodies);  // prism updates per second
+  run.counters["faces"] = double(limb.mesh.n_faces());
+}
+BENCHMARK(GlobalAssembly)->Arg(60)->Arg(240)->UseManualTime()->Iterations(10)->Unit(benchmark::kMicrosecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();

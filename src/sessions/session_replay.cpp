@@ -1,0 +1,96 @@
+#include "primo/session_replay.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+
+#include "primo/error.h"
+#include "primo/scenario_solve.h"
+
+namespace primo {
+namespace {
+
+std::unique_ptr<Deformer> build(const Mesh& mesh, const SessionState& state, const Deformer* previous) {
+  const SessionSolverInputs in = solver_inputs(state);
+  auto d = std::make_unique<Deformer>(mesh, in.params, in.handles, in.forces);
+  if (previous) d->set_face_motions(previous->face_motions());
+  return d;
+}
+
+void set_targets(Deformer& d, const SessionState& state) {
+  const SessionSolverInputs in = solver_inputs(state);
+  for (size_t h = 0; h < in.handles.size(); ++h) d.set_handle_transform(int(h), in.handles[h].transform);
+  for (size_t f = 0; f < in.forces.size(); ++f)
+    if (in.forces[f].target_offset != d.forces()[f].target_offset)
+      d.set_force_offset(int(f), in.forces[f].target_offset);
+}
+
+SolveOptions options_for(const SolverSpec& spec, int n_faces, int max_iterations) {
+  SolveOptions o;
+  o.method = scenario_solve_method(spec.method, size_t(n_faces));  // as the editor solves
+  o.tolerance = spec.tolerance;
+  o.max_iterations = max_iterations;
+  return o;
+}
+
+}  // namespace
+
+ReplayResult replay_session(const Session& session, const Mesh& mesh, const ReplayOptions& opt) {
+  const int n_faces = int(mesh.n_faces());
+  validate_session(session, n_faces);  // throws naming the event; nothing solved yet
+
+  ReplayResult r;
+  SessionState state = validate_session(
+      Session{session.source, session.mesh, session.mesh_path, session.solver, session.initial, {}},
+      n_faces);
+  std::unique_ptr<Deformer> d = build(mesh, state, nullptr);
+  bool converged = false;
+  size_t next = 0;
+  const int frames = session.frames();
+  for (int frame = 0; frame < std::max(frames, 1); ++frame) {
+    const SessionState before = state;
+    while (next < session.events.size() && session.events[next].frame == frame)
+      apply_event(state, session.events[next++], n_faces);
+    if (!same_solver_structure(before, state)) {
+      d = build(mesh, state, d.get());
+      ++r.rebuilds;
+      converged = false;
+    } else if (!(before == state)) {
+      set_targets(*d, state);
+      converged = false;
+    }
+    if (!converged && opt.iterations_per_frame > 0) {
+      const SolveReport rep = d->solve(options_for(session.solver, n_faces, opt.iterations_per_frame));
+      r.iterations += rep.iterations;
+      converged = rep.converged && rep.stop_reason == "tolerance";
+    }
+    if (opt.every > 0 && frame % opt.every == 0 && opt.on_frame) opt.on_frame(frame, *d);
+  }
+  r.frames = std::max(frames, 1);
+
+  // Settle, confirmed by one more solve after a stop on the tolerance.
+  for (int pass = 0; pass < 2; ++pass) {
+    const SolveReport rep = d->solve(options_for(session.solver, n_faces, session.solver.max_iterations));
+    r.iterations += rep.iterations;
+    r.converged = rep.converged;
+    r.energy = rep.energy;
+    if (!rep.converged) break;
+  }
+  r.positions = d->vertex_positions();
+  for (size_t v = 0; v < r.positions.size(); ++v)
+    if (!r.positions[v].allFinite())
+      throw Error((session.source.empty() ? std::string("session") : session.source) +
+                  ": the replay produced a non-finite position at vertex " + std::to_string(v));
+  r.state = state;
+  return r;
+}
+
+std::vector<Vec3> solve_from_rest(const SessionState& state, const Mesh& mesh, const SolverSpec& spec) {
+  std::unique_ptr<Deformer> d = build(mesh, state, nullptr);
+  for (int pass = 0; pass < 2; ++pass)
+    if (!d->solve(options_for(spec, int(mesh.n_faces()), spec.max_iterations)).converged) break;
+  return d->vertex_positions();
+}
+
+}  // namespace primo
