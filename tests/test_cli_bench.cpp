@@ -40,9 +40,10 @@ TEST(BenchCli, DragReportsEveryFigure) {
   const std::string json = primo::test::temp_dir() + "/drag.json";
   const CommandResult r =
       run_primo("bench drag " + primo::test::source_path("assets/scenarios/bar-bend.json") +
-                " --frames 5 --json " + json);
+                " --frames 5 --lag-every 2 --json " + json);
   ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
   EXPECT_NE(r.out.find("median ms"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("max distance %"), std::string::npos) << r.out;
   const nlohmann::json d = read_json(json);
 
   for (const char* key : {"faces", "frame_seconds", "median_ms", "max_ms", "final_energy",
@@ -71,6 +72,21 @@ TEST(BenchCli, DragReportsEveryFigure) {
   EXPECT_GE(d["converge_seconds"].get<double>(), 0.0);
   EXPECT_EQ(d["converge_tolerance"].get<double>(), 1e-7);
   EXPECT_GT(d["peak_memory_mb"].get<double>(), 0.0);
+
+  // The lag as the artist sees it: at frames 2 and 4 (--lag-every 2) and the last, the drag's
+  // mesh against the converged shape of that frame's targets; the last frame's reference is
+  // the shape the solve after the drag reaches.
+  ASSERT_EQ(d["lag"].size(), 3u);
+  EXPECT_EQ(d["lag"][0]["frame"].get<int>(), 2);
+  EXPECT_EQ(d["lag"][2]["frame"].get<int>(), 5);
+  for (const auto& p : d["lag"]) {
+    EXPECT_GE(p["max_distance"].get<double>(), 0.0);
+    EXPECT_LT(p["max_distance"].get<double>(), 0.5) << "a fraction of the diagonal";
+    EXPECT_GE(p["energy_gap"].get<double>(), -1e-6) << "a converged shape is no higher";
+  }
+  EXPECT_NEAR(d["lag"][2]["max_distance"].get<double>(), d["last_frame_max_distance"].get<double>(),
+              1e-3);
+  EXPECT_NEAR(d["lag"][2]["converged_energy"].get<double>(), converged, 1e-6 * converged);
 
   // The drag goes from rest: energies rise frame by frame towards the bent pose.
   ASSERT_EQ(d["frame_energies"].size(), 5u);

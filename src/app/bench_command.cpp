@@ -78,6 +78,11 @@ Command register_bench(CLI::App& app) {
   drag->add_flag("--bbox-handles", drag_args->bbox_handles,
                  "Ignore the scenario's regions, handles and forces: bottom tenth (y) fixed, top "
                  "tenth turned 30 deg about x and moved a tenth of the diagonal along +z");
+  drag->add_option("--lag-every", drag_args->lag_every,
+                   "Measure the lag behind the converged shape every K frames and at the last "
+                   "(0: the last only)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
   drag->add_flag("--drag-only", drag_args->drag_only,
                  "Only the frames: no solving on to convergence, no full solve from rest");
   // Experiments with the hierarchical solver's settings (SolveOptions::hierarchical); the

@@ -132,6 +132,17 @@ struct DragRun {
   Breakdown converge_profile;
   double memory_after_drag_mb = 0.0;
   double memory_after_converge_mb = 0.0;
+  // The drag's mesh at the lag checkpoints (frame numbers from 1).
+  std::vector<int> checkpoint_frames;
+  std::vector<std::vector<Vec3>> checkpoint_positions;
+};
+
+// How far the drag's mesh at a frame is from the converged shape for that frame's targets.
+struct LagPoint {
+  int frame = 0;
+  double energy = 0.0, converged_energy = 0.0;
+  double max_distance = 0.0;  // as a fraction of the bounding-box diagonal
+  int iterations = 0;         // the reference solve's, from the previous checkpoint's shape
 };
 
 struct FullSolveRun {
@@ -154,7 +165,7 @@ double g_sink = 0.0;  // keeps the vertex read from being optimized away
 
 // The drag on `deformer` (made with the final targets): targets back to rest, then N frames.
 void run_frames(Deformer& deformer, const DragCase& c, const SolveOptions& base, int frames,
-                DragRun& run) {
+                int lag_every, DragRun& run) {
   set_targets(deformer, c, 0.0);  // every handle and force back at rest
   deformer.reset();
   // The editor sets the solver up when the handles are made, before they are dragged.
@@ -184,6 +195,10 @@ void run_frames(Deformer& deformer, const DragCase& c, const SolveOptions& base,
     b.add_solver(before, SolverClock::read(deformer));
     run.frame_seconds.push_back(std::chrono::duration<double>(t3 - t0).count());
     run.frame_energies.push_back(report.energy);
+    if (k == frames || (lag_every > 0 && k % lag_every == 0)) {
+      run.checkpoint_frames.push_back(k);
+      run.checkpoint_positions.push_back(positions);
+    }
   }
   if (const HierarchicalSolver* h = deformer.hierarchical_solver()) {
     for (int l = 0; l < h->levels(); ++l) run.level_bodies.push_back(h->bodies(l));
@@ -216,6 +231,33 @@ void run_converge(Deformer& deformer, const SolveOptions& base, DragRun& run) {
   run.converge_profile.total = seconds_since(start);
   run.converge_profile.add_solver(before, SolverClock::read(deformer));
   run.memory_after_converge_mb = peak_memory_mb();
+}
+
+// The reference: a second deformer dragged through the same targets, converged at every
+// checkpoint (warm-started from the previous one), against the drag's recorded meshes.
+std::vector<LagPoint> measure_lag(const DragCase& c, const SolveOptions& base, int frames,
+                                  const DragRun& run) {
+  std::vector<LagPoint> lag;
+  Deformer reference(c.mesh, c.prisms, c.handles, c.forces);
+  set_targets(reference, c, 0.0);
+  reference.reset();
+  SolveOptions converge = base;
+  converge.max_iterations = kDragConvergeMaxIterations;
+  converge.tolerance = kDragConvergeTolerance;
+  converge.path.enabled = true;  // a checkpoint is several frames away: follow, as a drag does
+  const double diagonal = bounding_box_diagonal(c.mesh);
+  for (size_t i = 0; i < run.checkpoint_frames.size(); ++i) {
+    const int k = run.checkpoint_frames[i];
+    set_targets(reference, c, double(k) / frames);
+    const SolveReport report = reference.solve(converge);
+    const std::vector<Vec3> shape = reference.vertex_positions();
+    const std::vector<Vec3>& dragged = run.checkpoint_positions[i];
+    double worst = 0.0;
+    for (size_t v = 0; v < shape.size(); ++v) worst = std::max(worst, (shape[v] - dragged[v]).norm());
+    lag.push_back({k, run.frame_energies[size_t(k) - 1], report.energy, worst / diagonal,
+                   report.iterations});
+  }
+  return lag;
 }
 
 // A fresh deformer with the final targets (its initial state), solved to convergence; then,
@@ -372,7 +414,7 @@ int run_drag_bench(const DragBenchOptions& args) {
     const auto start = Clock::now();
     Deformer deformer(c.mesh, c.prisms, c.handles, c.forces);
     drag.setup_seconds = seconds_since(start);
-    run_frames(deformer, c, base, args.frames, drag);
+    run_frames(deformer, c, base, args.frames, args.drag_only ? 0 : args.lag_every, drag);
 
     const double median_ms = 1e3 * median_of(drag.frame_seconds);
     const double max_ms =
@@ -426,6 +468,38 @@ int run_drag_bench(const DragBenchOptions& args) {
       out["converge_stop_reason"] = drag.converge.stop_reason;
       out["converge_tolerance"] = kDragConvergeTolerance;
       out["converge_max_iterations"] = kDragConvergeMaxIterations;
+
+      // What the artist sees: the last frame against the converged shape, and the checkpoints
+      // against the shapes their own targets converge to.
+      const double diagonal = bounding_box_diagonal(c.mesh);
+      const std::vector<Vec3> converged_shape = deformer.vertex_positions();
+      const std::vector<Vec3>& last = drag.checkpoint_positions.back();
+      double last_distance = 0.0;
+      for (size_t v = 0; v < last.size(); ++v)
+        last_distance = std::max(last_distance, (converged_shape[v] - last[v]).norm());
+      last_distance /= diagonal;
+      std::printf("Lag as the artist sees it: the largest vertex distance to the converged shape, "
+                  "%% of the bounding-box diagonal\n");
+      std::printf("  last frame against the shape solved on to: %.3f%%\n", 100.0 * last_distance);
+      out["last_frame_max_distance"] = last_distance;
+      std::fflush(stdout);
+      const std::vector<LagPoint> lag = measure_lag(c, base, args.frames, drag);
+      std::printf("  %6s %12s %16s %8s\n", "frame", "energy gap %", "max distance %", "ref its");
+      nlohmann::json lag_json = nlohmann::json::array();
+      for (const LagPoint& p : lag) {
+        const double energy_gap = p.converged_energy > 0 ? p.energy / p.converged_energy - 1.0 : 0.0;
+        std::printf("  %6d %12.3f %16.3f %8d\n", p.frame, 100.0 * energy_gap, 100.0 * p.max_distance,
+                    p.iterations);
+        lag_json.push_back({{"frame", p.frame},
+                            {"energy", p.energy},
+                            {"converged_energy", p.converged_energy},
+                            {"energy_gap", energy_gap},
+                            {"max_distance", p.max_distance},
+                            {"reference_iterations", p.iterations}});
+      }
+      std::printf("\n");
+      out["lag"] = lag_json;
+      out["lag_every"] = args.lag_every;
     }
   }
 
