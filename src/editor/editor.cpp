@@ -114,6 +114,7 @@ void Editor::apply_document(std::unique_ptr<Document> doc) {
   double r;
   bounding_sphere(doc_->topology->rest_points, c, r);
   camera_.set_scene_radius(r);
+  follow_orientation(false);  // the new model seen from the same side of it as the last
   camera_.frame(to_glm(c), r, true);
   tools.tool = doc_->state.handles.empty() ? Tool::Select : Tool::Drag;
   sync_solver();
@@ -240,6 +241,7 @@ void Editor::update(double seconds) {
     overlay_changed_ = true;
   last_display_ = display;
   last_tools_ = tools;
+  follow_orientation(true);  // after an undo, redo or playback that changed it
   camera_.update(seconds);
 }
 

@@ -12,6 +12,7 @@
 
 #include "face_colors.h"
 #include "gizmo_draw.h"
+#include "model_orientation.h"
 #include "paths.h"
 #include "controls_window.h"
 #include "preferences_window.h"
@@ -627,6 +628,9 @@ void draw_menu(Editor& e, UiState& ui) {
     if (ImGui::MenuItem("Front", keys(Action::ViewFront))) e.camera().view_preset(ViewPreset::Front);
     if (ImGui::MenuItem("Right", keys(Action::ViewRight))) e.camera().view_preset(ViewPreset::Right);
     if (ImGui::MenuItem("Top", keys(Action::ViewTop))) e.camera().view_preset(ViewPreset::Top);
+    // Views are the model's: its front and up (docs/editor.md, "Looking around").
+    if (ImGui::MenuItem("Set front from view", nullptr, false, doc != nullptr)) e.set_front_from_view();
+    if (doc) ImGui::TextDisabled("  Model: %s", orientation_label(doc->state.orientation).c_str());
     bool ortho = e.camera().orthographic();
     if (ImGui::MenuItem("Orthographic", keys(Action::ToggleProjection), &ortho)) e.camera().set_orthographic(ortho);
     ImGui::Separator();
