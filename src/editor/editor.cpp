@@ -61,6 +61,7 @@ void Editor::apply_preferences() {
   display.prisms = p.prisms;
   display.heat_map = p.heat_map;
   display.paint_overlay = p.paint_overlay;
+  display.grid = p.grid;
   tools.brush_radius = p.brush_radius;
   tools.paint_strength = p.paint_strength;
   tools.paint_falloff = p.paint_falloff;

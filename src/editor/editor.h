@@ -54,6 +54,7 @@ struct DisplaySettings {
   bool prisms = false;         // the prism layer as wire cages
   bool heat_map = false;       // joint energy density per face
   bool paint_overlay = true;   // painted factors in false colour
+  bool grid = true;            // the ground grid under the model (ground_grid.h)
 };
 
 // The viewport inside the window: origin and size in window coordinates, and framebuffer

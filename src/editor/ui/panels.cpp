@@ -471,6 +471,7 @@ void display_section(Editor& e) {
   ImGui::Checkbox("Energy heat map (7)", &d.heat_map);
   ImGui::SameLine(ImGui::GetContentRegionAvail().x * 0.5f);
   ImGui::Checkbox("Paint colours (8)", &d.paint_overlay);
+  ImGui::Checkbox("Ground grid", &d.grid);
   if (d.heat_map) {
     const auto g = e.geometry();
     ImDrawList* dl = ImGui::GetWindowDrawList();
@@ -639,6 +640,7 @@ void draw_menu(Editor& e, UiState& ui) {
     ImGui::MenuItem("Prism layer", keys(Action::TogglePrisms), &e.display.prisms);
     ImGui::MenuItem("Energy heat map", keys(Action::ToggleHeatMap), &e.display.heat_map);
     ImGui::MenuItem("Paint colours", keys(Action::TogglePaintOverlay), &e.display.paint_overlay);
+    ImGui::MenuItem("Ground grid", nullptr, &e.display.grid);
     ImGui::Separator();
     ImGui::MenuItem("Panels", keys(Action::TogglePanels), &ui.show_panels);
     ImGui::EndMenu();
