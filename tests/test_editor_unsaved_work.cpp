@@ -175,7 +175,9 @@ TEST(EditorUnsavedWork, RecentFilesAreNewestFirstUniqueAndBounded) {
 TEST(EditorPreferences, AreKeptBetweenRunsAndAppliedAtStart) {
   const std::string file = preferences_path();  // in this test process's own config folder
   Preferences p;
+  EXPECT_TRUE(p.grid) << "the ground grid is on by default";
   p.wireframe = true;
+  p.grid = false;
   p.brush_radius = 55.0;
   p.paint_falloff = Falloff::Smooth;
   p.autosave_minutes = 5.0;
@@ -183,12 +185,14 @@ TEST(EditorPreferences, AreKeptBetweenRunsAndAppliedAtStart) {
   ASSERT_TRUE(save_preferences(p));
   const Preferences back = load_preferences();
   EXPECT_TRUE(back.wireframe);
+  EXPECT_FALSE(back.grid);
   EXPECT_EQ(back.brush_radius, 55.0);
   EXPECT_EQ(back.paint_falloff, Falloff::Smooth);
   EXPECT_EQ(back.tolerance, 1e-6);
   // A new editor starts with them; a mesh opened without a scenario settles to that tolerance.
   Editor e;
   EXPECT_TRUE(e.display.wireframe);
+  EXPECT_FALSE(e.display.grid);
   EXPECT_EQ(e.tools.brush_radius, 55.0);
   EXPECT_EQ(e.tools.paint_falloff, Falloff::Smooth);
   const std::string dir = test::temp_dir();

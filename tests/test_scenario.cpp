@@ -737,7 +737,7 @@ TEST(ScenarioSolvedState, RoundTripsEveryDigitAndIsCheckedAgainstTheMesh) {
   m.rotation = Eigen::AngleAxisd(2.0, Vec3(1, 2, 3).normalized()).toRotationMatrix();
   m.translation = Vec3(0.1, -1.0 / 3.0, 2e-17);
   s.solved_state = SolvedStateSpec{{m, RigidTransform::identity()}};
-  s.editor = EditorSpec{{}, {}};
+  s.editor = EditorSpec{};
   const Scenario again = parse_scenario(scenario_to_json(s), "");
   ASSERT_TRUE(again.solved_state.has_value());
   ASSERT_EQ(again.solved_state->face_motions.size(), 2u);
@@ -802,6 +802,59 @@ TEST(ScenarioEditorMirrorPairs, RoundTripAndBadPairsAreErrors) {
                   {"exactly one of 'handles' and 'forces'"});
   expect_contains(error(R"([{"handles": [0, 1], "axis": "x"}, {"handles": [1, 0], "axis": "z"}])"),
                   {"editor.mirror_pairs[1]", "handle 1 is in two mirror pairs"});
+}
+
+TEST(ScenarioEditorOrientation, ParsesWritesAndReadsBack) {
+  const Scenario plain = parse_scenario(scenario_text(), "");
+  EXPECT_FALSE(plain.editor) << "no orientation unless the file gives one";
+  Scenario s = parse_scenario(
+      scenario_text(R"("editor": {"orientation": {"up": "+z", "front": "-y"}})"), "");
+  ASSERT_TRUE(s.editor && s.editor->orientation);
+  EXPECT_EQ(s.editor->orientation->up, (SignedAxis{2, 1}));
+  EXPECT_EQ(s.editor->orientation->front, (SignedAxis{1, -1}));
+  const Scenario again = parse_scenario(scenario_to_json(s), "");
+  ASSERT_TRUE(again.editor && again.editor->orientation);
+  EXPECT_EQ(*again.editor->orientation, *s.editor->orientation);
+  // Every signed axis reads back as itself.
+  for (int axis = 0; axis < 3; ++axis)
+    for (const int sign : {1, -1}) {
+      const SignedAxis a{axis, sign};
+      const SignedAxis up{(axis + 1) % 3, 1};
+      const ModelOrientation o = parse_model_orientation(
+          R"({"up": ")" + signed_axis_name(up) + R"(", "front": ")" + signed_axis_name(a) + "\"}",
+          "");
+      EXPECT_EQ(o.front, a) << signed_axis_name(a);
+      EXPECT_EQ(o.up, up);
+    }
+  EXPECT_EQ(signed_axis_name({0, -1}), "-x");
+  // The default is the OBJ / glTF convention.
+  EXPECT_EQ(ModelOrientation{}.up, (SignedAxis{1, 1}));
+  EXPECT_EQ(ModelOrientation{}.front, (SignedAxis{2, 1}));
+}
+
+TEST(ScenarioEditorOrientation, BadOrientationsAreOneLineErrorsNamingTheKey) {
+  auto error = [](const std::string& orientation) {
+    return error_of([&] {
+      parse_scenario(scenario_text(R"("editor": {"orientation": )" + orientation + "}"), "o.json");
+    });
+  };
+  expect_contains(error(R"({"up": "y", "front": "+z"})"),
+                  {"o.json", "editor.orientation.up", "\"+x\"", "got \"y\""});
+  expect_contains(error(R"({"up": "+y", "front": "+w"})"),
+                  {"editor.orientation.front", "got \"+w\""});
+  expect_contains(error(R"({"up": "+y", "front": 2})"),
+                  {"editor.orientation.front", "expected a string"});
+  expect_contains(error(R"({"up": "+y"})"), {"editor.orientation.front", "missing required key"});
+  expect_contains(error(R"({"up": "+y", "front": "-y"})"),
+                  {"editor.orientation.front", "perpendicular to up (+y)", "got -y"});
+  expect_contains(error(R"({"up": "+y", "front": "+z", "right": "+x"})"),
+                  {"editor.orientation.right", "unknown key"});
+  expect_contains(error(R"("+y")"), {"editor.orientation", "expected an object"});
+  // The same object on its own (a mesh's orientation file): the same messages, from its root.
+  expect_contains(error_of([] { parse_model_orientation(R"({"up": "+y", "front": "+y"})", "m.json"); }),
+                  {"m.json: front:", "perpendicular"});
+  expect_contains(error_of([] { parse_model_orientation("[1]", "m.json"); }),
+                  {"m.json: (root): expected an object"});
 }
 
 }  // namespace

@@ -83,9 +83,26 @@ struct MirrorPairSpec {
   int axis = 0;         // 0 x, 1 y, 2 z
 };
 
+// A world axis with its direction: "+x" is {0, +1}, "-z" is {2, -1}.
+struct SignedAxis {
+  int axis = 1;  // 0 x, 1 y, 2 z
+  int sign = 1;  // +1 or -1
+  bool operator==(const SignedAxis& o) const { return axis == o.axis && sign == o.sign; }
+};
+
+// Which way the model's up and its front point (`editor.orientation`): the editor's views
+// (front, top, ...) and its ground grid follow it; the solver does not read it. The two axes
+// are perpendicular. The default is the convention of OBJ and glTF: up +y, front +z.
+struct ModelOrientation {
+  SignedAxis up{1, 1};
+  SignedAxis front{2, 1};
+  bool operator==(const ModelOrientation& o) const { return up == o.up && front == o.front; }
+};
+
 struct EditorSpec {
   std::vector<int> fixed_regions;
   std::vector<MirrorPairSpec> mirror_pairs;
+  std::optional<ModelOrientation> orientation;
 };
 
 struct Scenario {
@@ -109,6 +126,14 @@ Scenario load_scenario(const std::string& path);
 // Serializes a scenario (all keys written explicitly). Parsing the result gives back an
 // equal scenario.
 std::string scenario_to_json(const Scenario& scenario);
+
+// "+x", "-y", ... as the file writes a signed axis.
+std::string signed_axis_name(const SignedAxis& axis);
+
+// An orientation object on its own, `{"up": "+y", "front": "-z"}`: what `editor.orientation`
+// holds, and what a mesh's orientation file beside it holds (docs/editor.md). Throws Error
+// "<source>: <key>: <problem>" as parse_scenario does.
+ModelOrientation parse_model_orientation(const std::string& json_text, const std::string& source);
 
 // Faces selected, sorted ascending. Throws Error naming `owner` ("handle 'top'",
 // "forces[2]", ...) when an index is out of range or nothing is selected.

@@ -489,11 +489,32 @@ MirrorPairSpec read_mirror_pair(const ScenarioReader& in, const Json& value,
   return pair;
 }
 
+SignedAxis read_signed_axis(const ScenarioReader& in, const Json& value, const std::string& path) {
+  const std::string name = in.string(value, path);
+  for (int axis = 0; axis < 3; ++axis)
+    for (const int sign : {1, -1})
+      if (name == signed_axis_name({axis, sign})) return {axis, sign};
+  in.fail(path, "expected \"+x\", \"-x\", \"+y\", \"-y\", \"+z\" or \"-z\", got \"" + name + "\"");
+}
+
+ModelOrientation read_orientation(const ScenarioReader& in, const Json& value,
+                                  const std::string& path) {
+  in.expect_object(value, path);
+  in.expect_only_keys(value, path, {"up", "front"});
+  ModelOrientation o;
+  o.up = read_signed_axis(in, in.required(value, path, "up"), child_path(path, "up"));
+  o.front = read_signed_axis(in, in.required(value, path, "front"), child_path(path, "front"));
+  if (o.up.axis == o.front.axis)
+    in.fail(child_path(path, "front"), "must be perpendicular to up (" + signed_axis_name(o.up) +
+                                           "), got " + signed_axis_name(o.front));
+  return o;
+}
+
 EditorSpec read_editor(const ScenarioReader& in, const Json& value, size_t n_handles,
                        size_t n_forces) {
   const std::string path = "editor";
   in.expect_object(value, path);
-  in.expect_only_keys(value, path, {"fixed_regions", "mirror_pairs"});
+  in.expect_only_keys(value, path, {"fixed_regions", "mirror_pairs", "orientation"});
   EditorSpec editor;
   if (const Json* v = in.optional(value, "fixed_regions")) {
     const std::string at = child_path(path, "fixed_regions");
@@ -520,6 +541,8 @@ EditorSpec read_editor(const ScenarioReader& in, const Json& value, size_t n_han
       editor.mirror_pairs.push_back(pair);
     }
   }
+  if (const Json* v = in.optional(value, "orientation"))
+    editor.orientation = read_orientation(in, *v, child_path(path, "orientation"));
   return editor;
 }
 
@@ -622,6 +645,15 @@ Scenario parse_scenario(const std::string& json_text, const std::string& source)
   return scenario;
 }
 
+ModelOrientation parse_model_orientation(const std::string& json_text, const std::string& source) {
+  const std::string label = source_label(source);
+  return read_orientation(ScenarioReader(label), parse_json_text(json_text, label), "");
+}
+
+std::string signed_axis_name(const SignedAxis& axis) {
+  return std::string(axis.sign < 0 ? "-" : "+") + char('x' + axis.axis);
+}
+
 Scenario load_scenario(const std::string& path) {
   std::ifstream file(path, std::ios::binary);
   if (!file) throw Error(path + ": cannot open the scenario file");
@@ -717,6 +749,9 @@ std::string scenario_to_json(const Scenario& scenario) {
                              {"axis", std::string(1, char('x' + p.axis))}});
       editor["mirror_pairs"] = std::move(pairs);
     }
+    if (const auto& o = scenario.editor->orientation)
+      editor["orientation"] = Json{{"up", signed_axis_name(o->up)},
+                                   {"front", signed_axis_name(o->front)}};
     root["editor"] = std::move(editor);
   }
 

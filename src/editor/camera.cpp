@@ -13,11 +13,6 @@ constexpr double kMaxPitch = 1.5607;  // just short of the pole: the turntable s
 constexpr double kDollyPerStep = 0.85;
 constexpr double kAnimationSeconds = 0.25;
 
-glm::dvec3 direction(double yaw, double pitch) {
-  // From the target towards the eye.
-  return {std::cos(pitch) * std::sin(yaw), std::sin(pitch), std::cos(pitch) * std::cos(yaw)};
-}
-
 double wrap_angle(double a) {
   const double two_pi = glm::two_pi<double>();
   a = std::fmod(a, two_pi);
@@ -111,6 +106,26 @@ void Camera::view_preset(ViewPreset preset) {
   animate_to(p);
 }
 
+void Camera::set_model_axes(const glm::dvec3& up, const glm::dvec3& front, bool keep_view) {
+  if (up == up_ && front == front_) return;
+  const glm::dvec3 towards_eye = direction(pose_.yaw, pose_.pitch);
+  anim_t_ = 1.0;  // an animation's yaw and pitch belong to the old frame
+  up_ = up;
+  front_ = front;
+  if (!keep_view) return;
+  const glm::dvec3 side = glm::cross(up_, front_);
+  pose_.pitch = std::clamp(std::asin(std::clamp(glm::dot(towards_eye, up_), -1.0, 1.0)),
+                           -kMaxPitch, kMaxPitch);
+  pose_.yaw = std::atan2(glm::dot(towards_eye, side), glm::dot(towards_eye, front_));
+}
+
+glm::dvec3 Camera::direction(double yaw, double pitch) const {
+  // Yaw 0 and pitch 0 look at the front; yaw pi/2 at the side on the viewer's right.
+  const glm::dvec3 side = glm::cross(up_, front_);
+  return std::cos(pitch) * std::sin(yaw) * side + std::sin(pitch) * up_ +
+         std::cos(pitch) * std::cos(yaw) * front_;
+}
+
 glm::dvec3 Camera::eye() const {
   return pose_.target + pose_.distance * direction(pose_.yaw, pose_.pitch);
 }
@@ -118,7 +133,7 @@ glm::dvec3 Camera::eye() const {
 glm::dvec3 Camera::forward() const { return -direction(pose_.yaw, pose_.pitch); }
 
 glm::dvec3 Camera::right() const {
-  return glm::normalize(glm::cross(forward(), glm::dvec3(0, 1, 0)));
+  return glm::normalize(glm::cross(forward(), up_));
 }
 
 glm::dvec3 Camera::up() const { return glm::cross(right(), forward()); }

@@ -4,6 +4,7 @@
 #include <cctype>
 #include <climits>
 
+#include "model_orientation.h"
 #include "primo/mesh_io.h"
 #include "scenario_bridge.h"
 
@@ -37,7 +38,13 @@ std::unique_ptr<Document> make_document(Mesh mesh, std::string mesh_path) {
 }
 
 std::unique_ptr<Document> load_document(const std::string& path) {
-  if (!is_scenario_path(path)) return make_document(load_mesh(path), path);
+  if (!is_scenario_path(path)) {
+    auto doc = make_document(load_mesh(path), path);
+    doc->state.orientation = mesh_orientation(path);
+    doc->saved_state = doc->state;
+    doc->history.reset(doc->state);
+    return doc;
+  }
   const Scenario scenario = load_scenario(path);
   Mesh mesh = load_mesh(scenario.mesh_path);
   const ResolvedScenario resolved = resolve_scenario(scenario, mesh);
@@ -45,6 +52,9 @@ std::unique_ptr<Document> load_document(const std::string& path) {
   doc->scenario_path = path;
   doc->solver = scenario.solver;
   doc->state = import_scenario(scenario, resolved, *doc->topology);
+  // The scenario's own orientation (imported above) wins over its mesh's.
+  if (!scenario.editor || !scenario.editor->orientation)
+    doc->state.orientation = mesh_orientation(scenario.mesh_path);
   doc->start_motions = resolved.start_motions;
   doc->saved_state = doc->state;
   doc->history.reset(doc->state);

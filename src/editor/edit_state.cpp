@@ -45,7 +45,8 @@ EditState initial_edit_state(int n_faces) {
 bool operator==(const EditState& a, const EditState& b) {
   if (a.handles.size() != b.handles.size() || !(a.prisms == b.prisms) ||
       !same_factors(a.height_factor, b.height_factor) ||
-      !same_factors(a.width_factor, b.width_factor) || !same_array(a.selection, b.selection))
+      !same_factors(a.width_factor, b.width_factor) || !same_array(a.selection, b.selection) ||
+      !(a.orientation == b.orientation))
     return false;
   for (size_t i = 0; i < a.handles.size(); ++i) {
     const HandleGroup &x = a.handles[i], &y = b.handles[i];

@@ -1,6 +1,6 @@
 #pragma once
 // Everything a user edits, as one value: handle groups, global prism settings, painted
-// per-face factors and the selection. Undo keeps whole EditStates; the large arrays are
+// per-face factors, the selection and the model's orientation. Undo keeps whole EditStates; the large arrays are
 // shared between states until one changes (copy on write), so a step costs what it changed.
 // The solver's input is derived from an EditState, never stored beside it.
 
@@ -11,6 +11,7 @@
 #include "handle_model.h"
 #include "mesh_topology.h"
 #include "primo/constraints.h"
+#include "primo/scenario.h"
 #include "selection.h"
 
 namespace primo::editor {
@@ -37,6 +38,9 @@ struct EditState {
   FactorArray height_factor;
   FactorArray width_factor;
   std::shared_ptr<const FaceMask> selection;
+  // The model's up and front (model_orientation.h): the views and the ground grid follow it.
+  // Saved with the scenario, so setting it is an undo step and unsaved work.
+  ModelOrientation orientation;
   int active = -1;       // index into handles, or -1
   int next_number = 1;   // for default handle names
   int next_color = 0;

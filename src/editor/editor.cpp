@@ -61,6 +61,7 @@ void Editor::apply_preferences() {
   display.prisms = p.prisms;
   display.heat_map = p.heat_map;
   display.paint_overlay = p.paint_overlay;
+  display.grid = p.grid;
   tools.brush_radius = p.brush_radius;
   tools.paint_strength = p.paint_strength;
   tools.paint_falloff = p.paint_falloff;
@@ -114,6 +115,7 @@ void Editor::apply_document(std::unique_ptr<Document> doc) {
   double r;
   bounding_sphere(doc_->topology->rest_points, c, r);
   camera_.set_scene_radius(r);
+  follow_orientation(false);  // the new model seen from the same side of it as the last
   camera_.frame(to_glm(c), r, true);
   tools.tool = doc_->state.handles.empty() ? Tool::Select : Tool::Drag;
   sync_solver();
@@ -240,6 +242,7 @@ void Editor::update(double seconds) {
     overlay_changed_ = true;
   last_display_ = display;
   last_tools_ = tools;
+  follow_orientation(true);  // after an undo, redo or playback that changed it
   camera_.update(seconds);
 }
 

@@ -54,6 +54,7 @@ struct DisplaySettings {
   bool prisms = false;         // the prism layer as wire cages
   bool heat_map = false;       // joint energy density per face
   bool paint_overlay = true;   // painted factors in false colour
+  bool grid = true;            // the ground grid under the model (ground_grid.h)
 };
 
 // The viewport inside the window: origin and size in window coordinates, and framebuffer
@@ -182,6 +183,10 @@ class Editor {
 
   void frame_all();
   void frame_selection();  // the selection, else the active handle, else everything
+  // The view direction becomes the model's front and the camera's up its up, each snapped to
+  // the nearest signed world axis (editor_orientation.cpp); an undo step, saved with the
+  // scenario. The front, right and top views, and the turntable, follow the orientation.
+  void set_front_from_view();
   void set_tool(Tool tool);
   // Panels edit document()->state directly, call live_edit() while a widget is active and
   // commit() when it is released (one undo step per widget interaction). live_edit() sends
@@ -277,6 +282,8 @@ class Editor {
   void mirror_selection(const FaceMask& before, FaceMask& after);
   FactorArray mirror_paint(const FactorArray& before, FactorArray after);
   void follow_mirror();
+  // Turns the camera's frame to the document's orientation (Camera::set_model_axes).
+  void follow_orientation(bool keep_view);
   // make_handle with a mirror on: the selection split into mirrored pairs when it lies on
   // both sides (or one) away from the plane. False when it is not such a selection.
   bool make_mirrored_handles(const std::vector<int>& faces, HandleMode mode);

@@ -60,6 +60,7 @@ Preferences load_preferences(const std::string& path) {
   read(j, "prisms", p.prisms, problems);
   read(j, "heat_map", p.heat_map, problems);
   read(j, "paint_overlay", p.paint_overlay, problems);
+  read(j, "grid", p.grid, problems);
   read(j, "brush_radius", p.brush_radius, problems);
   read(j, "paint_strength", p.paint_strength, problems);
   read(j, "autosave_minutes", p.autosave_minutes, problems);
@@ -90,6 +91,7 @@ bool save_preferences(const Preferences& p, const std::string& path) {
                   {"prisms", p.prisms},
                   {"heat_map", p.heat_map},
                   {"paint_overlay", p.paint_overlay},
+                  {"grid", p.grid},
                   {"brush_radius", p.brush_radius},
                   {"paint_strength", p.paint_strength},
                   {"paint_falloff", falloff_name(p.paint_falloff)},

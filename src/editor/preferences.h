@@ -20,6 +20,7 @@ struct Preferences {
   bool prisms = false;
   bool heat_map = false;
   bool paint_overlay = true;
+  bool grid = true;  // the ground grid
   // Brushes.
   double brush_radius = 32.0;  // viewport pixels
   double paint_strength = 1.0;

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <sstream>
 
+#include "model_orientation.h"
 #include "paint.h"
 
 namespace primo::editor {
@@ -104,6 +105,14 @@ Scenario export_scenario(const EditState& state, const std::string& mesh_path,
     if (!s.editor) s.editor = EditorSpec{};
     s.editor->mirror_pairs.push_back({forces, spec_index[i], spec_index[size_t(j)], g.mirror_axis});
   }
+  // The orientation goes into the file unless opening the mesh alone gives it anyway: it is
+  // the format's convention and no orientation file beside the mesh could say otherwise.
+  std::error_code ec;
+  if (!(state.orientation == format_orientation(mesh_path)) ||
+      fs::exists(orientation_file_path(mesh_path), ec)) {
+    if (!s.editor) s.editor = EditorSpec{};
+    s.editor->orientation = state.orientation;
+  }
   if (motions) s.solved_state = SolvedStateSpec{*motions};
   return s;
 }
@@ -167,6 +176,7 @@ EditState import_scenario(const Scenario& scenario, const ResolvedScenario& reso
       const int offset = p.forces ? int(resolved.handles.size()) : 0;
       link_mirror_twins(state, offset + p.first, offset + p.second, p.axis);
     }
+  if (scenario.editor && scenario.editor->orientation) state.orientation = *scenario.editor->orientation;
   state.active = state.handles.empty() ? -1 : 0;
   return state;
 }

@@ -3,7 +3,8 @@
 // (a --script, and real X input through xdotool), let the editor save its scenario, the
 // deformed mesh and screenshots, and check that
 //  - `primo deform` on the saved scenario gives the editor's mesh (1e-6 of the bbox diagonal),
-//  - the screenshots show the mesh, not a blank or error frame.
+//  - the screenshots show the mesh, not a blank or error frame;
+//  - the ground grid is drawn on screen but left out of a clean screenshot.
 // Artifacts stay in <build>/tests/e2e-artifacts/<test>/.
 
 #include <gtest/gtest.h>
@@ -279,6 +280,58 @@ quit
   std::printf("%s", read_text(dir + "/editor.log").c_str());
   ASSERT_EQ(code, 0) << "the editor survived";
   expect_deform_reproduces(dir);
+}
+
+TEST(EditorE2E, TheGroundGridIsOnScreenButNotInCleanScreenshots) {
+  // With the panels hidden (F10) the window is the 3D view, so the two pictures differ only by
+  // what a clean screenshot leaves out: the ground grid, light lines on the dark floor.
+  const std::string dir = artifacts("ground-grid");
+  const std::string scenario = make_bar_scenario(dir);
+  write_text(dir + "/grid.txt", R"(wait-settled 60
+key f10
+wait 0.3
+screenshot )" + dir + R"(/clean.png
+screenshot )" + dir + R"(/window.png ui
+quit
+)");
+  ASSERT_EQ(run(kPrimo + " edit " + scenario + " --script " + dir + "/grid.txt > " + dir +
+                "/editor.log 2>&1"),
+            0)
+      << read_text(dir + "/editor.log");
+  int w = 0, h = 0, n = 0, w2 = 0, h2 = 0;
+  unsigned char* clean = stbi_load((dir + "/clean.png").c_str(), &w, &h, &n, 3);
+  unsigned char* window = stbi_load((dir + "/window.png").c_str(), &w2, &h2, &n, 3);
+  ASSERT_TRUE(clean && window);
+  ASSERT_EQ(w, w2);
+  ASSERT_EQ(h, h2);
+  // Pixels that differ, and how many of them are darker, in a part of the view (fractions of
+  // the width and height). The handle labels and the axis widget are drawn in the window
+  // too: the parts are away from them.
+  auto changes = [&](double x0, double y0, double x1, double y1, long& darker) {
+    long differing = 0, total = 0;
+    darker = 0;
+    for (int y = int(y0 * h); y < int(y1 * h); ++y)
+      for (int x = int(x0 * w); x < int(x1 * w); ++x) {
+        const size_t i = size_t(y) * w + x;
+        int diff = 0, sum = 0;
+        for (int c = 0; c < 3; ++c) {
+          diff += std::abs(window[3 * i + c] - clean[3 * i + c]);
+          sum += window[3 * i + c] - clean[3 * i + c];
+        }
+        ++total;
+        if (diff > 6) ++differing, darker += sum < 0;
+      }
+    return double(differing) / double(std::max(total, 1L));
+  };
+  long darker = 0;
+  const double floor = changes(0.1, 0.6, 0.35, 0.9, darker);  // the floor left of the bar
+  std::printf("the grid changes %.1f%% of the floor left of the bar\n", 100 * floor);
+  EXPECT_GT(floor, 0.01) << "the grid is drawn in the window";
+  EXPECT_LT(floor, 0.5) << "thin lines, not a filled floor";
+  EXPECT_EQ(darker, 0) << "light lines";
+  EXPECT_EQ(changes(0.05, 0.05, 0.4, 0.4, darker), 0.0) << "nothing above the horizon";
+  stbi_image_free(clean);
+  stbi_image_free(window);
 }
 
 TEST(EditorE2E, ALassoClosedNearItsStartSelects) {

@@ -12,12 +12,14 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <sstream>
 #include <thread>
 
 #include "editor.h"
 #include "face_colors.h"
 #include "gl.h"
+#include "ground_grid.h"
 #include "panels.h"
 #include "paths.h"
 #include "preferences_window.h"
@@ -140,6 +142,7 @@ class App : public ScriptHost {
   bool just_pressed_[3] = {false, false, false};
   const MeshTopology* shown_topology_ = nullptr;
   const ProxyTriangles* shown_proxy_ = nullptr;  // null until the document's proxy is built
+  std::optional<ModelOrientation> grid_orientation_;  // of the ground grid drawn (none yet)
   int settled_frames_ = 0;
   bool screenshot_run_ = false;
   double start_ = 0.0;
@@ -263,6 +266,11 @@ void App::sync_renderer() {
     renderer_->set_topology(*doc->topology);
     shown_topology_ = doc->topology.get();
     shown_proxy_ = nullptr;
+    grid_orientation_.reset();
+  }
+  if (!grid_orientation_ || !(*grid_orientation_ == doc->state.orientation)) {
+    renderer_->set_ground_grid(make_ground_grid(doc->topology->rest_points, doc->state.orientation));
+    grid_orientation_ = doc->state.orientation;
   }
   if (!shown_proxy_) {
     if (const ProxyTriangles* proxy = doc->proxy->ready()) {
@@ -375,7 +383,13 @@ void App::frame(double now, double dt) {
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   const int vx = int(vp.x * scale), vw = int(vp.width * scale), vh = int(vp.height * scale);
   renderer_->set_interactive(editor_.gesture() != Editor::Gesture::None);
-  renderer_->draw(editor_.display, vx, fb_h - int(vp.y * scale) - vh, vw, vh);
+  // A screenshot of the 3D view alone is a picture of the model, as a render is in Blender:
+  // the ground grid, an aid for looking around, stays out of it (docs/editor.md).
+  DisplaySettings shown = editor_.display;
+  if ((!ui_.screenshot_path.empty() && !ui_.screenshot_with_ui) ||
+      (screenshot_run_ && !script_ && !options_.screenshot_ui))
+    shown.grid = false;
+  renderer_->draw(shown, vx, fb_h - int(vp.y * scale) - vh, vw, vh);
 
   // A --screenshot run: once the view shows a settled solve (two frames in a row).
   if (screenshot_run_ && !script_) {

@@ -73,6 +73,11 @@ void FileDialog::refresh() {
       const std::string ext = lower(e.path().extension().string());
       if (!extensions_.empty() && std::find(extensions_.begin(), extensions_.end(), ext) == extensions_.end())
         continue;
+      // A mesh's orientation file (model_orientation.h) is .json but no scenario to open.
+      const std::string suffix = ".orientation.json";
+      if (lower(name).size() > suffix.size() &&
+          lower(name).compare(name.size() - suffix.size(), suffix.size(), suffix) == 0)
+        continue;
       entry.size = e.file_size(ignored);
     }
     entries_.push_back(entry);

@@ -12,6 +12,7 @@
 
 #include "face_colors.h"
 #include "gizmo_draw.h"
+#include "model_orientation.h"
 #include "paths.h"
 #include "controls_window.h"
 #include "preferences_window.h"
@@ -470,6 +471,7 @@ void display_section(Editor& e) {
   ImGui::Checkbox("Energy heat map (7)", &d.heat_map);
   ImGui::SameLine(ImGui::GetContentRegionAvail().x * 0.5f);
   ImGui::Checkbox("Paint colours (8)", &d.paint_overlay);
+  ImGui::Checkbox("Ground grid", &d.grid);
   if (d.heat_map) {
     const auto g = e.geometry();
     ImDrawList* dl = ImGui::GetWindowDrawList();
@@ -627,6 +629,9 @@ void draw_menu(Editor& e, UiState& ui) {
     if (ImGui::MenuItem("Front", keys(Action::ViewFront))) e.camera().view_preset(ViewPreset::Front);
     if (ImGui::MenuItem("Right", keys(Action::ViewRight))) e.camera().view_preset(ViewPreset::Right);
     if (ImGui::MenuItem("Top", keys(Action::ViewTop))) e.camera().view_preset(ViewPreset::Top);
+    // Views are the model's: its front and up (docs/editor.md, "Looking around").
+    if (ImGui::MenuItem("Set front from view", nullptr, false, doc != nullptr)) e.set_front_from_view();
+    if (doc) ImGui::TextDisabled("  Model: %s", orientation_label(doc->state.orientation).c_str());
     bool ortho = e.camera().orthographic();
     if (ImGui::MenuItem("Orthographic", keys(Action::ToggleProjection), &ortho)) e.camera().set_orthographic(ortho);
     ImGui::Separator();
@@ -635,6 +640,7 @@ void draw_menu(Editor& e, UiState& ui) {
     ImGui::MenuItem("Prism layer", keys(Action::TogglePrisms), &e.display.prisms);
     ImGui::MenuItem("Energy heat map", keys(Action::ToggleHeatMap), &e.display.heat_map);
     ImGui::MenuItem("Paint colours", keys(Action::TogglePaintOverlay), &e.display.paint_overlay);
+    ImGui::MenuItem("Ground grid", nullptr, &e.display.grid);
     ImGui::Separator();
     ImGui::MenuItem("Panels", keys(Action::TogglePanels), &ui.show_panels);
     ImGui::EndMenu();

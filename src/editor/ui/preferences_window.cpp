@@ -30,6 +30,7 @@ void display_and_brushes(Preferences& p) {
   ImGui::Checkbox("Energy heat map", &p.heat_map);
   ImGui::SameLine();
   ImGui::Checkbox("Paint colours", &p.paint_overlay);
+  ImGui::Checkbox("Ground grid", &p.grid);
   ImGui::Separator();
   ImGui::TextDisabled("Brushes");
   float radius = float(p.brush_radius), strength = float(p.paint_strength);

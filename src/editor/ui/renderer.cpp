@@ -20,7 +20,8 @@ MeshRenderer::MeshRenderer(const std::string& shader_folder, int samples)
     : mesh_(shader_folder, "mesh.vert", "mesh.frag"),
       pick_(shader_folder, "mesh.vert", "pick.frag"),
       lines_(shader_folder, "lines.vert", "lines.frag"),
-      background_(shader_folder, "background.vert", "background.frag") {
+      background_(shader_folder, "background.vert", "background.frag"),
+      grid_program_(shader_folder, "grid.vert", "grid.frag") {
   glGenVertexArrays(1, &vao_);
   glGenBuffers(1, &position_vbo_);
   glGenBuffers(1, &normal_vbo_);
@@ -47,6 +48,17 @@ MeshRenderer::MeshRenderer(const std::string& shader_folder, int samples)
   glBindVertexArray(0);
   glGenVertexArrays(1, &empty_vao_);
 
+  glGenVertexArrays(1, &grid_vao_);
+  glGenBuffers(1, &grid_vbo_);
+  glBindVertexArray(grid_vao_);
+  glBindBuffer(GL_ARRAY_BUFFER, grid_vbo_);
+  glEnableVertexAttribArray(0);
+  glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 4 * sizeof(float), nullptr);
+  glEnableVertexAttribArray(1);
+  glVertexAttribPointer(1, 1, GL_FLOAT, GL_FALSE, 4 * sizeof(float),
+                        reinterpret_cast<const void*>(3 * sizeof(float)));
+  glBindVertexArray(0);
+
   glGenBuffers(1, &triangle_face_buffer_);
   glGenTextures(1, &triangle_face_texture_);
   glGenBuffers(1, &color_buffer_);
@@ -62,12 +74,12 @@ MeshRenderer::MeshRenderer(const std::string& shader_folder, int samples)
 MeshRenderer::~MeshRenderer() {
   const GLuint buffers[] = {position_vbo_, normal_vbo_, triangle_ebo_, edge_ebo_,
                             triangle_face_buffer_, color_buffer_, prism_vbo_, prism_ebo_,
-                            proxy_ebo_, proxy_face_buffer_};
+                            proxy_ebo_, proxy_face_buffer_, grid_vbo_};
   glDeleteBuffers(GLsizei(std::size(buffers)), buffers);
   const GLuint textures[] = {triangle_face_texture_, color_texture_, pick_id_, pick_depth_,
                              proxy_face_texture_};
   glDeleteTextures(GLsizei(std::size(textures)), textures);
-  const GLuint arrays[] = {vao_, prism_vao_, empty_vao_};
+  const GLuint arrays[] = {vao_, prism_vao_, empty_vao_, grid_vao_};
   glDeleteVertexArrays(GLsizei(std::size(arrays)), arrays);
   const GLuint renderbuffers[] = {pick_z_, scene_color_, scene_depth_};
   glDeleteRenderbuffers(GLsizei(std::size(renderbuffers)), renderbuffers);
@@ -155,6 +167,20 @@ void MeshRenderer::set_face_colors(const std::vector<std::uint32_t>& colors) {
   ++colors_version_;
 }
 
+void MeshRenderer::set_ground_grid(const GroundGrid& grid) {
+  // Per vertex: x, y, z, and 1 on a major line.
+  std::vector<float> vertices;
+  for (const GridLine& line : grid_lines(grid))
+    for (const glm::dvec3& p : {line.a, line.b})
+      vertices.insert(vertices.end(), {float(p.x), float(p.y), float(p.z), line.major ? 1.0f : 0.0f});
+  glBindBuffer(GL_ARRAY_BUFFER, grid_vbo_);
+  glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(vertices.size() * sizeof(float)), vertices.data(),
+               GL_STATIC_DRAW);
+  grid_vertex_count_ = GLsizei(vertices.size() / 4);
+  grid_ = grid;
+  ++geometry_version_;  // the scene shows it
+}
+
 void MeshRenderer::ensure_scene_target(int width, int height) {
   if (scene_fbo_ && width == scene_width_ && height == scene_height_) return;
   if (!scene_fbo_) {
@@ -191,6 +217,7 @@ void MeshRenderer::draw(const DisplaySettings& display, int x, int y, int width,
   key.smooth = display.smooth;
   key.wireframe = display.wireframe;
   key.prisms = display.prisms;
+  key.grid = display.grid;
   key.width = width;
   key.height = height;
   if (!(key == drawn_)) {
@@ -246,7 +273,10 @@ void MeshRenderer::render_scene(const DisplaySettings& display, int width, int h
   }
   glDisable(GL_POLYGON_OFFSET_FILL);
 
-  // 3. Lines: polygon edges and prism cages, blended, not writing depth (not over a proxy).
+  // 3. The ground grid, where the mesh does not hide it.
+  if (display.grid && grid_vertex_count_ > 0) render_grid();
+
+  // 4. Lines: polygon edges and prism cages, blended, not writing depth (not over a proxy).
   if (!proxy && (display.wireframe || (display.prisms && prisms_uploaded_))) {
     glEnable(GL_BLEND);
     glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
@@ -271,6 +301,31 @@ void MeshRenderer::render_scene(const DisplaySettings& display, int width, int h
   }
   glBindVertexArray(0);
   glDisable(GL_DEPTH_TEST);
+}
+
+void MeshRenderer::render_grid() {
+  glEnable(GL_BLEND);
+  glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+  glDepthMask(GL_FALSE);  // a line of the floor never hides anything
+  grid_program_.use();
+  upload_matrix(grid_program_.uniform("view"), camera_->view());
+  upload_matrix(grid_program_.uniform("projection"), camera_->projection());
+  const glm::vec3 center(grid_.center), normal(grid_.normal), eye(camera_->eye()),
+      forward(camera_->forward());
+  glUniform3fv(grid_program_.uniform("center"), 1, glm::value_ptr(center));
+  glUniform3fv(grid_program_.uniform("normal"), 1, glm::value_ptr(normal));
+  glUniform1f(grid_program_.uniform("radius"), float(grid_.half_size()));
+  glUniform3fv(grid_program_.uniform("eye"), 1, glm::value_ptr(eye));
+  glUniform3fv(grid_program_.uniform("view_direction"), 1, glm::value_ptr(forward));
+  glUniform1i(grid_program_.uniform("orthographic"), camera_->orthographic() ? 1 : 0);
+  // Light lines on the dark background, faint enough not to compete with the model.
+  glUniform4f(grid_program_.uniform("minor_color"), 0.62f, 0.65f, 0.70f, 0.16f);
+  glUniform4f(grid_program_.uniform("major_color"), 0.70f, 0.73f, 0.78f, 0.34f);
+  glBindVertexArray(grid_vao_);
+  glDrawArrays(GL_LINES, 0, grid_vertex_count_);
+  glBindVertexArray(0);
+  glDepthMask(GL_TRUE);
+  glDisable(GL_BLEND);
 }
 
 void MeshRenderer::render_pick() {
@@ -306,6 +361,7 @@ void MeshRenderer::render_pick() {
   glClear(GL_DEPTH_BUFFER_BIT);
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
+  // The mesh alone: the ground grid and the overlays are never picked.
   pick_.use();
   upload_matrix(pick_.uniform("view"), camera_->view());
   upload_matrix(pick_.uniform("projection"), camera_->projection());

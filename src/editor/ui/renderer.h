@@ -7,7 +7,8 @@
 // settings changed, so frames where only the panels change cost a copy. While the camera
 // moves, a big mesh is drawn through its proxy (a decimated stand-in). The pick pass (face id and
 // eye depth per pixel) is rendered on demand, only when the geometry or the camera changed
-// since the last one.
+// since the last one. The ground grid (ground_grid.h) is drawn under the mesh, blended and
+// depth-tested, and never into the pick pass: it cannot be picked.
 
 #include <chrono>
 #include <cstdint>
@@ -18,6 +19,7 @@
 #include "editor.h"
 #include "gl.h"
 #include "gl_shader.h"
+#include "ground_grid.h"
 #include "mesh_topology.h"
 #include "proxy_mesh.h"
 
@@ -40,6 +42,7 @@ class MeshRenderer : public Picker {
   void set_geometry(const std::vector<float>& positions, const std::vector<float>& normals);
   void set_prism_corners(const std::vector<float>& corners);  // empty: none to show
   void set_face_colors(const std::vector<std::uint32_t>& colors);
+  void set_ground_grid(const GroundGrid& grid);
   bool has_mesh() const { return triangle_count_ > 0; }
 
   // Draws background and mesh into the rectangle (GL window coordinates, origin bottom-left)
@@ -58,10 +61,11 @@ class MeshRenderer : public Picker {
   void render_pick();
   bool pick_current() const;
   void render_scene(const DisplaySettings& display, int width, int height, bool proxy);
+  void render_grid();
   void ensure_scene_target(int width, int height);
 
   const Camera* camera_ = nullptr;
-  ShaderProgram mesh_, pick_, lines_, background_;
+  ShaderProgram mesh_, pick_, lines_, background_, grid_program_;
   GLuint vao_ = 0, position_vbo_ = 0, normal_vbo_ = 0, triangle_ebo_ = 0, edge_ebo_ = 0;
   GLuint triangle_face_buffer_ = 0, triangle_face_texture_ = 0;
   GLuint color_buffer_ = 0, color_texture_ = 0;
@@ -71,6 +75,9 @@ class MeshRenderer : public Picker {
   bool prisms_uploaded_ = false;
   GLuint proxy_ebo_ = 0, proxy_face_buffer_ = 0, proxy_face_texture_ = 0;
   GLsizei proxy_count_ = 0;
+  GLuint grid_vao_ = 0, grid_vbo_ = 0;
+  GLsizei grid_vertex_count_ = 0;
+  GroundGrid grid_;
 
   // Offscreen scene and what it shows.
   int samples_ = 0;
@@ -80,12 +87,12 @@ class MeshRenderer : public Picker {
   struct SceneKey {
     glm::dmat4 matrix{0.0};
     std::uint64_t geometry = 0, colors = 0;
-    bool smooth = false, wireframe = false, prisms = false, proxy = false;
+    bool smooth = false, wireframe = false, prisms = false, grid = false, proxy = false;
     int width = 0, height = 0;
     bool operator==(const SceneKey& o) const {
       return matrix == o.matrix && geometry == o.geometry && colors == o.colors &&
              smooth == o.smooth && wireframe == o.wireframe && prisms == o.prisms &&
-             proxy == o.proxy && width == o.width && height == o.height;
+             grid == o.grid && proxy == o.proxy && width == o.width && height == o.height;
     }
   };
   SceneKey drawn_;
