@@ -32,6 +32,8 @@ bool Editor::run_action(Action action) {
     case Action::TogglePrisms: toggle(display.prisms); return true;
     case Action::ToggleHeatMap: toggle(display.heat_map); return true;
     case Action::TogglePaintOverlay: toggle(display.paint_overlay); return true;
+    case Action::ToggleGrid: toggle(display.grid); return true;
+    case Action::SetFrontFromView: set_front_from_view(); return true;
 
     case Action::ToolSelect: set_tool(Tool::Select); return true;
     case Action::ShapeBrush: select_shape(SelectShape::Brush); return true;

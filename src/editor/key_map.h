@@ -20,7 +20,7 @@ enum class Action {
   // View
   FrameSelection, FrameAll, ViewFront, ViewBack, ViewRight, ViewLeft, ViewTop, ViewBottom,
   ToggleProjection, ToggleWireframe, ToggleSmooth, TogglePrisms, ToggleHeatMap,
-  TogglePaintOverlay, TogglePanels, ShowControls,
+  TogglePaintOverlay, ToggleGrid, SetFrontFromView, TogglePanels, ShowControls,
   // Tools
   ToolSelect, ShapeBrush, ShapeBox, ShapeLasso, ToolDrag, ToolMove, ToolRotate, ToolPaint,
   BrushSmaller, BrushLarger, ToggleXray, Cancel,
