@@ -16,7 +16,9 @@ packages=(
   libglfw3-dev libglm-dev libimgui-dev libstb-dev libgl-dev libgl1-mesa-dri
   # tests (GoogleTest; the editor's end-to-end tests under Xvfb) and the micro-benchmarks
   # (Google Benchmark: primo_microbench)
-  libgtest-dev libgmock-dev libbenchmark-dev xvfb xauth xdotool
+  libgtest-dev libbenchmark-dev xvfb xauth xdotool
+  # the Python module and its tests
+  python3-dev pybind11-dev python3-numpy python3-pytest
 )
 
 missing=()

@@ -1,0 +1,181 @@
+"""The primo Python module: arrays in and out, deformers, scenarios, sessions and errors.
+
+Run by ctest (Python.Module) with PYTHONPATH set to the build's python/ folder; by hand:
+    PYTHONPATH=build/python /usr/bin/python3 -m pytest -q tests/python
+"""
+import math
+import os
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+import primo
+
+SOURCE = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+ASSETS = os.path.join(SOURCE, "assets")
+SHARED_MESHES = os.path.join(os.path.dirname(SOURCE), "shared", "meshes")
+
+
+def tube(segments=12, bands=20, radius=0.25, length=2.0):
+    """An open quad tube along +y."""
+    V = [[radius * math.cos(2 * math.pi * i / segments), length * j / bands,
+          radius * math.sin(2 * math.pi * i / segments)]
+         for j in range(bands + 1) for i in range(segments)]
+    F = [[j * segments + i, (j + 1) * segments + i, (j + 1) * segments + (i + 1) % segments,
+          j * segments + (i + 1) % segments]
+         for j in range(bands) for i in range(segments)]
+    return np.array(V), np.array(F)
+
+
+def test_arrays_round_trip_and_polygons_stay_polygons(tmp_path):
+    V, F = tube()
+    mesh = primo.Mesh(V, F)
+    assert (mesh.n_vertices, mesh.n_faces) == (len(V), len(F))
+    assert np.array_equal(mesh.vertices, V)
+    assert mesh.faces.shape == F.shape and np.array_equal(mesh.faces, F)
+    # Mixed polygons come back as lists, in file order.
+    square_and_triangle = primo.Mesh([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0], [2, 0.5, 0]],
+                                     [[0, 1, 2, 3], [1, 4, 2]])
+    assert square_and_triangle.faces == [[0, 1, 2, 3], [1, 4, 2]]
+    path = str(tmp_path / "tube.obj")
+    primo.save_mesh(mesh, path)
+    again = primo.load_mesh(path)
+    assert np.allclose(again.vertices, V, atol=1e-15) and np.array_equal(again.faces, F)
+
+
+def test_bad_input_raises_primo_errors_with_the_cores_messages(tmp_path):
+    with pytest.raises(primo.Error, match="face 0"):
+        primo.Mesh([[0, 0, 0], [1, 0, 0], [0, 1, 0]], [[0, 1, 7]])
+    with pytest.raises(ValueError, match=r"\(n, 3\)"):
+        primo.Mesh(np.zeros((4, 2)), [[0, 1, 2]])
+    missing = str(tmp_path / "missing.obj")
+    with pytest.raises(primo.Error, match="missing.obj"):
+        primo.load_mesh(missing)
+    mesh = primo.Mesh(*tube())
+    with pytest.raises(primo.Error, match="out of range"):
+        primo.Deformer(mesh, [primo.Handle([10**6])])
+    with pytest.raises(ValueError, match="fix"):
+        primo.Handle([0], fix="sideways")
+    d = primo.Deformer(mesh, [primo.Handle([0])])
+    with pytest.raises(IndexError):
+        d.set_handle_transform(3, translate=[0, 1, 0])
+    with pytest.raises(ValueError, match="rotation"):
+        d.set_handle_transform(0, matrix=np.diag([2.0, 1.0, 1.0, 1.0]))
+
+
+def test_a_bent_tube_follows_its_handles_and_drags_back_to_rest():
+    V, F = tube()
+    mesh = primo.Mesh(V, F)
+    c = mesh.face_centroids()
+    bottom, top = c[:, 1] < 0.15, c[:, 1] > 1.85
+    d = primo.Deformer(mesh, [primo.Handle(bottom), primo.Handle(top, name="top")])
+    d.set_handle_transform(1, translate=[0.5, -0.3, 0], axis=[0, 0, 1], angle_deg=60)
+    report = d.solve(tolerance=1e-10)
+    assert report.converged and report.energy > 0
+    X = d.vertices()
+    assert X.shape == V.shape and X.dtype == np.float64
+    assert np.abs(X - V).max() > 0.3
+    # The top ring moved rigidly to its target: rotate about the handle's centroid (its faces'
+    # area-weighted centroid at rest), then translate.
+    top_vertices = V[:, 1] > 1.99
+    centre = c[top].mean(axis=0)
+    a = math.radians(60)
+    R = np.array([[math.cos(a), -math.sin(a), 0], [math.sin(a), math.cos(a), 0], [0, 0, 1]])
+    expected = (V[top_vertices] - centre) @ R.T + centre + [0.5, -0.3, 0]
+    assert np.abs(X[top_vertices] - expected).max() < 1e-3
+    # The same target as a 4x4 matrix gives the same pose.
+    M = np.eye(4)
+    M[:3, :3] = R
+    M[:3, 3] = centre - R @ centre + [0.5, -0.3, 0]
+    d2 = primo.Deformer(mesh, [primo.Handle(bottom), primo.Handle(top)])
+    d2.set_handle_transform(1, matrix=M)
+    d2.solve(tolerance=1e-10)
+    assert np.abs(d2.vertices() - X).max() < 1e-6 * mesh.bbox_diagonal
+    # Back to rest: the rest pose is the unique minimum.
+    d.set_handle_transform(1)
+    d.solve(tolerance=1e-12)
+    assert np.abs(d.vertices() - V).max() < 1e-6 * mesh.bbox_diagonal
+
+
+def test_springs_prisms_and_painted_factors_change_the_pose():
+    V, F = tube()
+    mesh = primo.Mesh(V, F)
+    c = mesh.face_centroids()
+    bottom, top = c[:, 1] < 0.15, c[:, 1] > 1.85
+    # A weak spring: the tube's stiffness decides how far it goes.
+    spring = primo.Deformer(mesh, [primo.Handle(bottom)], [primo.Force(top, stiffness=0.01, offset=[0.6, 0, 0])])
+    spring.solve(tolerance=1e-10)
+    pulled = spring.vertices()
+    assert pulled[V[:, 1] > 1.99, 0].mean() > 0.2
+    # A softer middle (height factors below 1) bends more under the same pull.
+    soft = np.where(np.abs(c[:, 1] - 1.0) < 0.3, 0.3, 1.0)
+    softer = primo.Deformer(mesh, [primo.Handle(bottom)], [primo.Force(top, stiffness=0.01, offset=[0.6, 0, 0])],
+                            height_factors=soft)
+    softer.solve(tolerance=1e-10)
+    assert softer.vertices()[V[:, 1] > 1.99, 0].mean() > pulled[V[:, 1] > 1.99, 0].mean() + 0.005
+    with pytest.raises(ValueError, match="at most one"):
+        primo.Deformer(mesh, [primo.Handle(bottom)], height=1.0, half_thickness=0.1)
+
+
+def test_the_vertices_array_owns_its_memory_without_a_copy():
+    mesh = primo.Mesh(*tube())
+    d = primo.Deformer(mesh, [primo.Handle([0])])
+    X = d.vertices()
+    assert X.flags["C_CONTIGUOUS"] and not X.flags["OWNDATA"]  # a view of the solver's vector
+    del d
+    assert np.isfinite(X).all()  # still valid: the array keeps the vector alive
+
+
+def test_a_scenario_solves_as_primo_deform_does(tmp_path):
+    scenario = os.path.join(ASSETS, "scenarios", "bar-bend.json")
+    X, report = primo.deform_scenario(scenario)
+    assert report.converged
+    out = str(tmp_path / "bar.obj")
+    exe = os.environ.get("PRIMO_EXECUTABLE")
+    if not exe:
+        pytest.skip("PRIMO_EXECUTABLE not set: cannot compare with primo deform")
+    subprocess.run([exe, "deform", scenario, "-o", out], check=True, capture_output=True)
+    assert np.abs(primo.load_mesh(out).vertices - X).max() < 1e-12
+    with pytest.raises(primo.Error, match="no-such.json"):
+        primo.deform_scenario(str(tmp_path / "no-such.json"))
+
+
+def test_a_recorded_session_replays():
+    session = os.path.join(ASSETS, "sessions", "spot-pose.session.json")
+    result = primo.replay_session(session)
+    assert result["frames"] > 0 and result["converged"]
+    assert result["vertices"].shape == (2930, 3)
+
+
+def test_results_do_not_depend_on_the_thread_count():
+    V, F = tube(segments=48, bands=120)
+    mesh = primo.Mesh(V, F)
+    c = mesh.face_centroids()
+    results = []
+    for threads in (1, 2, 3):
+        primo.set_thread_count(threads)
+        d = primo.Deformer(mesh, [primo.Handle(c[:, 1] < 0.1), primo.Handle(c[:, 1] > 1.9)])
+        d.set_handle_transform(1, axis=[1, 0, 0], angle_deg=90, translate=[0, -0.5, 0.5])
+        d.solve(method="hierarchical", max_iterations=5, tolerance=0)
+        results.append(d.vertices())
+    primo.set_thread_count(0)
+    assert all(np.array_equal(r, results[0]) for r in results)
+
+
+def test_the_documented_example_poses_the_armadillos_arm(tmp_path):
+    armadillo = os.path.join(SHARED_MESHES, "armadillo_29k.obj")
+    if not os.path.exists(armadillo):
+        pytest.skip("skipped: ../shared/meshes/armadillo_29k.obj is not here")
+    example = os.path.join(SOURCE, "docs", "examples", "pose_armadillo_arm.py")
+    out = str(tmp_path / "posed.obj")
+    run = subprocess.run([sys.executable, example, armadillo, out], capture_output=True, text=True,
+                         env=dict(os.environ))
+    assert run.returncode == 0, run.stderr
+    assert "converged=True" in run.stdout
+    rest, posed = primo.load_mesh(armadillo).vertices, primo.load_mesh(out).vertices
+    moved = np.linalg.norm(posed - rest, axis=1)
+    hand = (rest[:, 0] > 0.33) & (rest[:, 1] > 0)
+    assert moved[hand].min() > 0.1  # the hand went up
+    assert moved[rest[:, 1] < -0.5].max() < 1e-9  # the feet stayed
