@@ -483,3 +483,27 @@ TEST(HierarchicalSolver, DragsRefreshCoarseFactorsInTheBackgroundReproducibly) {
   EXPECT_LT(max_distance(first.vertex_positions(), flat.vertex_positions()),
             1e-4 * bounding_box_diagonal(s.mesh));
 }
+
+TEST(HierarchicalSolver, ShowsTheCoarseCorrectionOncePerCycleWithoutChangingTheResult) {
+  const PosedMesh s = bent_cylinder();
+  Deformer plain(s.mesh, PrismParameters{}, s.handles);
+  SolveOptions o = hierarchical(6, 0.0);
+  o.path.enabled = false;
+  plain.solve(o);
+
+  Deformer shown(s.mesh, PrismParameters{}, s.handles);
+  int calls = 0;
+  double moved = 0.0;  // how far an intermediate shape lies from the cycle's start
+  std::vector<Vec3> before = shown.vertex_positions();
+  o.on_coarse_correction = [&] {
+    ++calls;
+    const std::vector<Vec3> intermediate = shown.vertex_positions();
+    moved = std::max(moved, max_distance(intermediate, before));
+    before = intermediate;
+  };
+  const SolveReport report = shown.solve(o);
+  EXPECT_EQ(calls, report.iterations);
+  EXPECT_GT(moved, 0.0);
+  EXPECT_EQ(max_distance(shown.vertex_positions(), plain.vertex_positions()), 0.0)
+      << "reading the state mid-cycle changes nothing";
+}

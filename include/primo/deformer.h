@@ -3,6 +3,7 @@
 // its prism parameters, handles and forces; then move handle targets and iterate, each solve
 // warm-started from the current state; read vertex positions and energy. Nothing is printed.
 
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -69,6 +70,11 @@ struct SolveOptions {
   // Hierarchical only. The hierarchy is built on the first hierarchical solve and kept until
   // the handle set changes (a new Deformer).
   HierarchicalOptions hierarchical;
+  // Hierarchical only: called in each cycle once the coarse levels' correction has reached
+  // every prism, before the fine sweeps; vertex_positions() then gives that intermediate
+  // shape (HierarchicalSolver::set_coarse_correction_callback). The editor shows it on big
+  // meshes, so that the surface moves twice a cycle while a handle is dragged.
+  std::function<void()> on_coarse_correction;
 };
 
 struct SolveReport {

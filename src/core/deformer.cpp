@@ -302,7 +302,12 @@ std::optional<double> Deformer::iterate(const SolveOptions& options, double e,
                     (e - step.energy_after) < options.exact_hessian_below * e;
     return step.energy_after;
   }
-  if (options.method == SolveMethod::Hierarchical) return hierarchical_->cycle(state_, e);
+  if (options.method == SolveMethod::Hierarchical) {
+    hierarchical_->set_coarse_correction_callback(options.on_coarse_correction);
+    const double energy = hierarchical_->cycle(state_, e);
+    hierarchical_->set_coarse_correction_callback({});
+    return energy;
+  }
   local_sweep(system_, state_);
   return system_.energy(state_);
 }

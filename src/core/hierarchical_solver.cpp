@@ -338,6 +338,7 @@ double HierarchicalSolver::plain_cycle(std::vector<BodyState>& fine_state, bool 
     t = Clock::now();
     prolong_level(*levels_[0], fine_state);
     timings_.restrict_prolong += seconds_since(t);
+    if (coarse_correction_callback_) coarse_correction_callback_();
   }
   const auto t = Clock::now();
   for (int k = 0; k < options_.sweeps_per_level; ++k) planned_sweep(fine_, fine_plan_, fine_state);

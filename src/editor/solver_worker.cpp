@@ -316,6 +316,12 @@ void SolverWorker::step() {
   // A jump (undo, typed values, an opened scenario) is followed in sub-steps, a batch at a
   // time, so new targets are still picked up between batches.
   options.path.max_iterations = std::max(1, batch);
+  // A drag on a big mesh, where one cycle outlasts a batch (240k faces: about 100 ms): the
+  // coarse correction is shown as soon as it reaches the prisms, and the swept result after,
+  // so the surface follows the hand twice a cycle.
+  const bool slow_cycles = status().seconds_per_iteration > kBatchSeconds;
+  if (dragging && slow_cycles && options.method == SolveMethod::Hierarchical)
+    options.on_coarse_correction = [this] { publish_geometry(); };
   if (first_solve_) {  // say what the wait is for: it can take seconds on big meshes
     {
       std::lock_guard<std::mutex> lock(mutex_);
