@@ -34,6 +34,7 @@
 #include <cstring>
 #include <filesystem>
 #include <new>
+#include <stdexcept>
 #include <unordered_map>
 #include <vector>
 
@@ -42,6 +43,21 @@
 #include "primo/mesh_import.h"
 
 namespace fs = std::filesystem;
+
+// Debian's Assimp is built with its internal checks (ai_assert) on, and their handler prints to
+// stderr and aborts the process: a damaged 3MF file (a zip without its model) would take the
+// editor down with it. The library calls this function through its exported symbol, which this
+// definition replaces for the whole process (the static core is linked into the executable,
+// whose definition wins), so a failed check becomes an exception that the importer catches
+// and reports as its error: "cannot read: not a valid 3MF file (Assimp: internal check failed:
+// mRootStream != nullptr)". Its handler setter is not exported by Debian's build.
+namespace Assimp {
+void aiAssertViolation(const char* expression, const char* file, int line);
+void aiAssertViolation(const char* expression, const char* /*file*/, int /*line*/) {
+  throw std::runtime_error(std::string("internal check failed: ") +
+                           (expression ? expression : "?"));
+}
+}  // namespace Assimp
 
 namespace primo {
 namespace detail {
@@ -326,8 +342,7 @@ class SceneBaker {
     const size_t merged = input_vertices_ - soup_.points.size();
     if (merged > 0)
       said.push_back("merged " + plural(merged, "vertex copy", "vertex copies") +
-                     " that the file splits for UVs, normals or materials (" +
-                     std::to_string(input_vertices_) + " -> " +
+                     " split for UVs or normals (" + std::to_string(input_vertices_) + " -> " +
                      std::to_string(soup_.points.size()) + " vertices)");
     if (collapsed_faces_)
       said.push_back("dropped " + plural(collapsed_faces_, "face", "faces") +
@@ -356,7 +371,7 @@ class SceneBaker {
     if (colors_) ignored.push_back("vertex colors");
     for (size_t s = 0; s < skins_.size() && s < 3; ++s)
       ignored.push_back("the skin of " + skins_[s].first + " (" +
-                        plural(skins_[s].second, "bone", "bones") + "; the bind pose is used)");
+                        plural(skins_[s].second, "bone", "bones") + "; bind pose used)");
     if (skins_.size() > 3) ignored.push_back(std::to_string(skins_.size() - 3) + " more skins");
     if (morph_targets_) ignored.push_back(plural(morph_targets_, "morph target", "morph targets"));
     if (scene_.mNumAnimations)
@@ -402,6 +417,26 @@ class SceneBaker {
   std::vector<std::pair<std::string, size_t>> skins_;
 };
 
+// Assimp's COLLADA reader reserves memory for the count="N" an array or accessor declares before
+// it reads the values: a damaged count makes it allocate gigabytes for tens of seconds before it
+// fails. A count can never exceed the file's size in bytes (every value takes at least one), so
+// larger ones are refused first.
+void check_collada_counts(std::string_view bytes, const std::string& path) {
+  const std::string_view key = "count=\"";
+  for (size_t at = bytes.find(key); at != std::string_view::npos; at = bytes.find(key, at + 1)) {
+    size_t i = at + key.size();
+    unsigned long long count = 0;
+    while (i < bytes.size() && std::isdigit(static_cast<unsigned char>(bytes[i])) &&
+           count <= bytes.size())
+      count = count * 10 + unsigned(bytes[i++] - '0');
+    if (count > bytes.size())
+      fail(path, "cannot read: not a valid COLLADA file (a count of " +
+                     (count > bytes.size() * 10 ? std::string("more than ") + std::to_string(bytes.size())
+                                                : std::to_string(count)) +
+                     " values is larger than the file)");
+  }
+}
+
 // Assimp logs only through its DefaultLogger, which PriMo never creates: nothing is printed.
 // Its importers throw internally and return no scene; the catches are for what escapes them.
 template <typename Read>
@@ -409,9 +444,11 @@ SceneSoup read_with_assimp(const std::string& path, Read read) {
   try {
     Assimp::Importer importer;
     const aiScene* scene = read(importer, aiProcess_ValidateDataStructure);
-    if (!scene)
-      fail(path, "cannot read: not a valid " + format_name(path) + " file (Assimp: " +
-                     assimp_message(importer.GetErrorString()) + ")");
+    if (!scene) {
+      const std::string message = assimp_message(importer.GetErrorString());
+      if (message.find("bad_alloc") != std::string::npos) fail(path, "cannot read: out of memory");
+      fail(path, "cannot read: not a valid " + format_name(path) + " file (Assimp: " + message + ")");
+    }
     return SceneBaker(*scene, path).bake();
   } catch (const Error&) {
     throw;
@@ -430,6 +467,13 @@ SceneSoup read_scene_file(const std::string& path) {
   if (fs::is_directory(path, ignored)) fail(path, "cannot read: this is a folder, not a file");
   std::FILE* file = std::fopen(path.c_str(), "rb");
   if (!file) fail(path, std::string("cannot open: ") + std::strerror(errno));
+  if (lowercase_extension(path) == ".dae") {
+    std::string bytes;
+    char buffer[1 << 16];
+    size_t count;
+    while ((count = std::fread(buffer, 1, sizeof buffer, file)) > 0) bytes.append(buffer, count);
+    check_collada_counts(bytes, path);
+  }
   std::fclose(file);
   return read_with_assimp(path, [&](Assimp::Importer& importer, unsigned flags) {
     return importer.ReadFile(path, flags);
@@ -438,6 +482,7 @@ SceneSoup read_scene_file(const std::string& path) {
 
 SceneSoup read_scene_bytes(std::string_view bytes, const std::string& path) {
   if (bytes.empty()) fail(path, "cannot read: the file is empty");
+  if (lowercase_extension(path) == ".dae") check_collada_counts(bytes, path);
   const std::string hint = lowercase_extension(path).substr(1);
   return read_with_assimp(path, [&](Assimp::Importer& importer, unsigned flags) {
     return importer.ReadFileFromMemory(bytes.data(), bytes.size(), flags, hint.c_str());
