@@ -8,8 +8,8 @@ packages=(
   build-essential cmake ninja-build pkg-config ccache
   # core library
   libopenmesh-dev libeigen3-dev libsuitesparse-dev libopenblas0-pthread libtbb-dev
-  # command line and file formats
-  nlohmann-json3-dev libcli11-dev
+  # command line and file formats (Assimp reads glTF, FBX, COLLADA and 3MF)
+  nlohmann-json3-dev libcli11-dev libassimp-dev
   # quality measurement: exact self-intersections and the ARAP peers (primo_quality only)
   libcgal-dev
   # editor

@@ -156,3 +156,19 @@ TEST_F(ReplayCli, ReplaysOnAFinerVersionOfTheMesh) {
   EXPECT_LT((clo - flo).norm(), 0.03);
   EXPECT_TRUE(fs::exists(dir + "/ff/frame_000008.obj"));
 }
+
+TEST_F(ReplayCli, FramesInAnotherFormat) {
+  const CommandResult r = run_primo("replay " + dir + "/pose.session.json -o " + dir +
+                                    "/final.glb --frames " + dir + "/frames --every 4 --frame-format glb");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(dir + "/frames/frame_000000.glb"));
+  EXPECT_FALSE(fs::exists(dir + "/frames/frame_000000.obj"));
+  const Mesh rest = load_mesh(dir + "/bar.obj");
+  const Mesh frame = load_mesh(dir + "/frames/frame_000004.glb");
+  EXPECT_EQ(frame.n_faces(), rest.n_faces());
+  EXPECT_EQ(load_mesh(dir + "/final.glb").n_vertices(), rest.n_vertices());
+  const CommandResult bad = run_primo("replay " + dir + "/pose.session.json -o " + dir +
+                                      "/x.obj --frames " + dir + "/f2 --frame-format fbx");
+  EXPECT_NE(bad.exit_code, 0);
+  EXPECT_FALSE(fs::exists(dir + "/f2"));
+}

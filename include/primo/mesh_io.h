@@ -15,8 +15,10 @@ struct PolygonSoup {
   std::vector<std::vector<int>> faces;
 };
 
-// Reads OBJ, OFF, PLY, STL or OM. OBJ and OFF are parsed here in double precision (OpenMesh 9
-// parses them as float); the others go through OpenMesh. The result is validated as
+// Reads OBJ, OFF, PLY, STL or OM, and the scene formats glTF 2.0 (.gltf, .glb), FBX, COLLADA
+// (.dae) and 3MF (through Assimp, as primo/mesh_import.h says: load_mesh_noted also returns
+// what was merged and ignored). OBJ and OFF are parsed here in double precision (OpenMesh 9
+// parses them as float); PLY, STL and OM go through OpenMesh. The result is validated as
 // `mesh_from_soup` does. Throws Error naming the file: unreadable, unknown extension,
 // syntax error (with line number), empty mesh, and every problem `mesh_from_soup` reports.
 Mesh load_mesh(const std::string& path);
@@ -28,10 +30,11 @@ Mesh load_mesh(const std::string& path);
 // face/vertex indices.
 Mesh mesh_from_soup(const PolygonSoup& soup, const std::string& source);
 
-// Writes the mesh by extension (OBJ, OFF, PLY, STL, OM) through a temporary file in the
-// same folder that is renamed into place, so a failure never leaves a partial file. OBJ and
-// OFF are written with 17 significant digits. STL holds triangles only, so n-gons are
-// fan-triangulated in the written file. Throws Error naming the file on failure.
+// Writes the mesh by extension (OBJ, OFF, PLY, STL, OM, glTF .gltf/.glb) through a temporary
+// file in the same folder that is renamed into place, so a failure never leaves a partial file.
+// OBJ and OFF are written with 17 significant digits. STL and glTF hold triangles only, so
+// n-gons are fan-triangulated in the written file (glTF keeps the face sizes for PriMo to read
+// back). FBX, COLLADA and 3MF are refused. Throws Error naming the file on failure.
 void save_mesh(const Mesh& mesh, const std::string& path);
 
 }  // namespace primo

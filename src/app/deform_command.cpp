@@ -9,6 +9,7 @@
 #include "commands.h"
 #include "primo/deformer.h"
 #include "primo/error.h"
+#include "primo/mesh_import.h"
 #include "primo/mesh_io.h"
 #include "primo/output_files.h"
 #include "primo/scenario.h"
@@ -29,7 +30,10 @@ struct DeformArguments {
 int run_deform(const DeformArguments& args) {
   check_mesh_output_path(args.output);
   const Scenario scenario = load_scenario(args.scenario);
-  const Mesh mesh = load_mesh(scenario.mesh_path);
+  // A scene file (glTF, FBX, ...) says what was joined, merged or left out: a note, not an error.
+  LoadedMesh loaded = load_mesh_noted(scenario.mesh_path);
+  if (!loaded.note.empty()) std::fprintf(stderr, "primo deform: note: %s\n", loaded.note.c_str());
+  const Mesh mesh = std::move(loaded.mesh);
   const ResolvedScenario resolved = resolve_scenario(scenario, mesh);
 
   Deformer deformer = make_scenario_deformer(mesh, resolved);
@@ -90,7 +94,8 @@ Command register_deform(CLI::App& app) {
   auto args = std::make_shared<DeformArguments>();
   CLI::App* cmd = app.add_subcommand("deform", "Solve a scenario file and write the deformed mesh");
   cmd->add_option("scenario", args->scenario, "Scenario file (primo-scenario/1 JSON)")->required();
-  cmd->add_option("-o,--output", args->output, "Deformed mesh (.obj .off .ply .stl .om)")->required();
+  cmd->add_option("-o,--output", args->output, "Deformed mesh (.obj .off .ply .stl .om .gltf .glb)")
+      ->required();
   cmd->add_option("--stats", args->stats, "Write solve statistics as JSON");
   cmd->add_option("--solver", args->solver,
                   "global, local or hierarchical (default: solver.method of the scenario, else "

@@ -15,8 +15,8 @@ Command register_edit(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "edit", "Open the interactive editor (the default when primo runs without arguments)");
   cmd->add_option("input", options->input,
-                  "Mesh (.obj .off .ply .stl .om) or scenario (.json) to open; default: the bundled "
-                  "Spot mesh");
+                  "Mesh (.obj .off .ply .stl .om .gltf .glb .fbx .dae .3mf) or scenario (.json) to "
+                  "open; default: the bundled Spot mesh");
   cmd->add_option("--screenshot", options->screenshot,
                   "Render until the solve has settled, save the view as PNG and exit");
   cmd->add_flag("--screenshot-ui", options->screenshot_ui, "Include the panels in the screenshot");

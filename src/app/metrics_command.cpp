@@ -63,7 +63,8 @@ Command register_metrics(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "metrics", "Compare a deformed mesh with its rest mesh (same connectivity): volume, area, "
                  "dihedral and edge changes, fold-overs, self-intersections");
-  cmd->add_option("rest", args->rest, "Rest mesh (.obj .off .ply .stl .om)")->required();
+  cmd->add_option("rest", args->rest, "Rest mesh (.obj .off .ply .stl .om .gltf .glb .fbx .dae .3mf)")
+      ->required();
   cmd->add_option("deformed", args->deformed, "Deformed mesh with the same vertices and faces")
       ->required();
   cmd->add_option("--json", args->json, "Also write the metrics as JSON");

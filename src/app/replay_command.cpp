@@ -1,6 +1,7 @@
-// `primo replay SESSION.json -o OUT.ext [--frames DIR --every N] [--stats STATS.json]`: replays
-// a recorded editor session headless (docs/sessions.md) and writes the final mesh, and with
-// --frames one OBJ per N frames (DIR/frame_000000.obj, ...). The whole session is validated
+// `primo replay SESSION.json -o OUT.ext [--frames DIR --every N --frame-format EXT]
+// [--stats STATS.json]`: replays a recorded editor session headless (docs/sessions.md) and writes
+// the final mesh, and with --frames one mesh per N frames (DIR/frame_000000.obj, ...; .glb with
+// --frame-format glb). The whole session is validated
 // against the mesh before anything is solved; frames go to a temporary folder inside DIR and
 // are moved into place only when the replay succeeded, so a failure writes nothing.
 
@@ -16,6 +17,7 @@
 
 #include "commands.h"
 #include "primo/error.h"
+#include "primo/mesh_import.h"
 #include "primo/mesh_io.h"
 #include "primo/output_files.h"
 #include "primo/session.h"
@@ -33,15 +35,16 @@ struct ReplayArguments {
   std::string frames;
   std::string stats;
   std::string mesh;
+  std::string frame_format = "obj";
   int every = 1;
   int iterations_per_frame = 1;
   int threads = 1;
 };
 
-std::string frame_name(int frame) {
+std::string frame_name(int frame, const std::string& format) {
   char buf[32];
-  std::snprintf(buf, sizeof buf, "frame_%06d.obj", frame);
-  return buf;
+  std::snprintf(buf, sizeof buf, "frame_%06d.", frame);
+  return buf + format;
 }
 
 // Threaded BLAS (OpenBLAS under CHOLMOD's supernodal factorization) and OpenMP sum in an
@@ -63,9 +66,15 @@ int run_replay(const ReplayArguments& args) {
                 " does not exist");
   const Session session = load_session(args.session);
   Session session_on_mesh;
-  Mesh mesh = load_mesh(session.mesh_path);
+  // A scene file (glTF, FBX, ...) says what was joined, merged or left out: a note, not an error.
+  const auto load = [](const std::string& path) {
+    LoadedMesh loaded = load_mesh_noted(path);
+    if (!loaded.note.empty()) std::fprintf(stderr, "primo replay: note: %s\n", loaded.note.c_str());
+    return std::move(loaded.mesh);
+  };
+  Mesh mesh = load(session.mesh_path);
   if (!args.mesh.empty()) {  // a finer version of the recorded mesh
-    Mesh fine = load_mesh(args.mesh);
+    Mesh fine = load(args.mesh);
     session_on_mesh = map_session_to_mesh(session, mesh, fine);
     mesh = std::move(fine);
   } else {
@@ -82,7 +91,7 @@ int run_replay(const ReplayArguments& args) {
     options.every = args.every;
     options.on_frame = [&](int frame, const Deformer& d) {
       if (written.empty()) fs::create_directories(temp);
-      const std::string name = frame_name(frame);
+      const std::string name = frame_name(frame, args.frame_format);
       save_mesh(d.deformed_mesh(mesh), (temp / name).string());
       written.push_back(name);
     };
@@ -128,9 +137,13 @@ Command register_replay(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "replay", "Replay a recorded editor session (primo-session/1) and write the final mesh");
   cmd->add_option("session", args->session, "Session file (.session.json)")->required();
-  cmd->add_option("-o,--output", args->output, "Final mesh (.obj .off .ply .stl .om)")->required();
+  cmd->add_option("-o,--output", args->output, "Final mesh (.obj .off .ply .stl .om .gltf .glb)")
+      ->required();
   cmd->add_option("--frames", args->frames,
-                  "Also write one OBJ per --every frames into this folder (created if missing)");
+                  "Also write one mesh per --every frames into this folder (created if missing)");
+  cmd->add_option("--frame-format", args->frame_format,
+                  "Format of the --frames meshes: obj (default), off, ply, stl, om, gltf or glb")
+      ->check(CLI::IsMember({"obj", "off", "ply", "stl", "om", "gltf", "glb"}));
   cmd->add_option("--every", args->every, "Frame step for --frames (default 1)")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--iterations-per-frame", args->iterations_per_frame,

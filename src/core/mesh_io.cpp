@@ -27,7 +27,9 @@
 #include <string_view>
 #include <system_error>
 
+#include "mesh_export_gltf.h"
 #include "primo/error.h"
+#include "primo/mesh_import.h"
 #include "silence_openmesh.h"
 
 namespace fs = std::filesystem;
@@ -35,9 +37,12 @@ namespace fs = std::filesystem;
 namespace primo {
 namespace {
 
-enum class Format { Obj, Off, Ply, Stl, Om };
+// Gltf and Glb are read through Assimp (mesh_import_assimp.cpp) and written by
+// mesh_export_gltf.cpp; Scene (FBX, COLLADA, 3MF) is only read, through Assimp.
+enum class Format { Obj, Off, Ply, Stl, Om, Gltf, Glb, Scene };
 
-const char* const kSupportedExtensions = ".obj, .off, .ply, .stl or .om";
+const char* const kSupportedExtensions =
+    ".obj, .off, .ply, .stl, .om, .gltf, .glb, .fbx, .dae or .3mf";
 
 [[noreturn]] void fail(const std::string& path, const std::string& what) {
   throw Error(path + ": " + what);
@@ -62,6 +67,9 @@ std::optional<Format> format_of(const std::string& extension) {
   if (extension == ".ply") return Format::Ply;
   if (extension == ".stl") return Format::Stl;
   if (extension == ".om") return Format::Om;
+  if (extension == ".gltf") return Format::Gltf;
+  if (extension == ".glb") return Format::Glb;
+  if (extension == ".fbx" || extension == ".dae" || extension == ".3mf") return Format::Scene;
   return std::nullopt;
 }
 
@@ -574,12 +582,19 @@ Mesh load_mesh(const std::string& path) {
       return mesh_from_soup(read_with_openmesh(path, "STL"), path);
     case Format::Om:
       return mesh_from_soup(read_with_openmesh(path, "OM"), path);
+    case Format::Gltf:
+    case Format::Glb:
+    case Format::Scene:
+      return load_mesh_noted(path).mesh;
   }
   fail(path, "cannot read: unhandled format");
 }
 
 void save_mesh(const Mesh& mesh, const std::string& path) {
   const Format format = format_or_fail(path, "cannot save");
+  if (format == Format::Scene)
+    fail(path, "cannot save: " + fs::path(path).extension().string() +
+                   " files are read, not written (save as .gltf or .glb for the same tools)");
   const fs::path target(path);
   const fs::path folder = target.has_parent_path() ? target.parent_path() : fs::path(".");
   std::error_code error;
@@ -611,6 +626,12 @@ void save_mesh(const Mesh& mesh, const std::string& path) {
         // Binary STL: exact float32, a fraction of the size of OpenMesh's 10-digit ASCII.
         bytes = openmesh_bytes(fan_triangulated(mesh), path, "stl", OpenMesh::IO::Options::Binary);
         break;
+      case Format::Gltf:
+      case Format::Glb:
+        bytes = detail::gltf_bytes(mesh, format == Format::Glb, target.stem().string(), path);
+        break;
+      case Format::Scene:
+        break;  // refused above
     }
     write_bytes(temp.string(), bytes, path);
     if (std::rename(temp.c_str(), path.c_str()) != 0)

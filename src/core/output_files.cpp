@@ -26,9 +26,10 @@ std::string extension_of(const std::string& path) {
 
 void check_mesh_output_path(const std::string& path) {
   const std::string ext = extension_of(path);
-  if (ext != ".obj" && ext != ".off" && ext != ".ply" && ext != ".stl" && ext != ".om")
+  if (ext != ".obj" && ext != ".off" && ext != ".ply" && ext != ".stl" && ext != ".om" &&
+      ext != ".gltf" && ext != ".glb")
     throw Error(path + ": unknown output format '" + ext +
-                "' (use .obj, .off, .ply, .stl or .om)");
+                "' (use .obj, .off, .ply, .stl, .om, .gltf or .glb)");
   const fs::path folder = fs::absolute(fs::path(path)).parent_path();
   if (!fs::is_directory(folder)) throw Error(path + ": the folder " + folder.string() + " does not exist");
 }

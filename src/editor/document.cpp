@@ -5,6 +5,7 @@
 #include <climits>
 
 #include "model_orientation.h"
+#include "primo/mesh_import.h"
 #include "primo/mesh_io.h"
 #include "scenario_bridge.h"
 
@@ -37,18 +38,32 @@ std::unique_ptr<Document> make_document(Mesh mesh, std::string mesh_path) {
   return doc;
 }
 
+namespace {
+
+// The note of a scene file without its leading "<path>: ".
+std::string note_without_path(const std::string& note, const std::string& path) {
+  const std::string prefix = path + ": ";
+  return note.rfind(prefix, 0) == 0 ? note.substr(prefix.size()) : note;
+}
+
+}  // namespace
+
 std::unique_ptr<Document> load_document(const std::string& path) {
   if (!is_scenario_path(path)) {
-    auto doc = make_document(load_mesh(path), path);
+    LoadedMesh loaded = load_mesh_noted(path);
+    auto doc = make_document(std::move(loaded.mesh), path);
+    doc->load_note = note_without_path(loaded.note, path);
     doc->state.orientation = mesh_orientation(path);
     doc->saved_state = doc->state;
     doc->history.reset(doc->state);
     return doc;
   }
   const Scenario scenario = load_scenario(path);
-  Mesh mesh = load_mesh(scenario.mesh_path);
+  LoadedMesh loaded = load_mesh_noted(scenario.mesh_path);
+  Mesh mesh = std::move(loaded.mesh);
   const ResolvedScenario resolved = resolve_scenario(scenario, mesh);
   auto doc = make_document(std::move(mesh), scenario.mesh_path);
+  doc->load_note = note_without_path(loaded.note, scenario.mesh_path);
   doc->scenario_path = path;
   doc->solver = scenario.solver;
   doc->state = import_scenario(scenario, resolved, *doc->topology);

@@ -120,7 +120,7 @@ void Editor::apply_document(std::unique_ptr<Document> doc) {
   info("Opened " + (doc_->scenario_path.empty() ? doc_->mesh_path : doc_->scenario_path) + ": " +
        std::to_string(doc_->topology->n_vertices) + " vertices, " +
        std::to_string(doc_->n_faces()) + " faces, " + std::to_string(doc_->state.handles.size()) +
-       " handles");
+       " handles" + (doc_->load_note.empty() ? "" : ". " + doc_->load_note));
 }
 
 void Editor::save_mesh(const std::string& path) {

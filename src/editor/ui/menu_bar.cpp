@@ -17,7 +17,11 @@ namespace primo::editor {
 namespace fs = std::filesystem;
 namespace {
 
-const std::vector<std::string> kMeshExtensions = {".obj", ".off", ".ply", ".stl", ".om"};
+// What File > Open reads, and what Export writes (FBX, COLLADA and 3MF are read only).
+const std::vector<std::string> kMeshExtensions = {".obj", ".off", ".ply",  ".stl", ".om",
+                                                  ".gltf", ".glb", ".fbx", ".dae", ".3mf"};
+const std::vector<std::string> kExportExtensions = {".obj", ".off", ".ply", ".stl",
+                                                    ".om",  ".gltf", ".glb"};
 
 std::string folder_of(const std::string& path) {
   if (path.empty()) return fs::current_path().string();
@@ -164,7 +168,7 @@ void ask_save_mesh(Editor& e, UiState& ui) {
   const Document* doc = e.document();
   if (!doc) return;
   ui.purpose = UiState::Purpose::SaveMesh;
-  ui.dialog.open(FileDialog::Mode::Save, "Export the deformed mesh", kMeshExtensions,
+  ui.dialog.open(FileDialog::Mode::Save, "Export the deformed mesh", kExportExtensions,
                  fs::current_path().string(), stem_of(doc->mesh_path) + "-deformed.obj");
 }
 

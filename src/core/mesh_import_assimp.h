@@ -1,0 +1,33 @@
+#pragma once
+// Internal to the core library: reading the scene formats (glTF 2.0, FBX, COLLADA, 3MF) through
+// Assimp into one polygon soup (docs/mesh-io.md, "Scene formats"). primo/mesh_import.h is the
+// public side.
+
+#include <string>
+#include <string_view>
+
+#include "primo/mesh_io.h"
+
+namespace primo::detail {
+
+// A scene baked into one soup, with what was merged and left out.
+struct SceneSoup {
+  PolygonSoup soup;
+  std::string note;   // one line, "" when there is nothing to say
+  std::string parts;  // for validation errors of several joined meshes: "faces 0-11 'Cube', ..."
+};
+
+// Reads the file through Assimp, so that buffers and files it refers to (a .gltf's .bin) are
+// found beside it. Throws Error "<path>: ..." when Assimp rejects the file or the scene holds
+// no mesh.
+SceneSoup read_scene_file(const std::string& path);
+
+// The same from bytes in memory (for the fuzz targets): `path` picks the format by extension
+// and names the file in errors; files the bytes refer to are not read.
+SceneSoup read_scene_bytes(std::string_view bytes, const std::string& path);
+
+// mesh_from_soup, and when several meshes were joined, the error says which faces came from
+// which.
+Mesh mesh_from_scene_soup(const SceneSoup& scene, const std::string& path);
+
+}  // namespace primo::detail
