@@ -3,6 +3,7 @@
 // vertex indices in scenarios mean what they mean in the file.
 
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "primo/mesh.h"
@@ -15,11 +16,18 @@ struct PolygonSoup {
   std::vector<std::vector<int>> faces;
 };
 
-// Reads OBJ, OFF, PLY, STL or OM. OBJ and OFF are parsed here in double precision (OpenMesh 9
-// parses them as float); the others go through OpenMesh. The result is validated as
-// `mesh_from_soup` does. Throws Error naming the file: unreadable, unknown extension,
-// syntax error (with line number), empty mesh, and every problem `mesh_from_soup` reports.
+// Reads OBJ, OFF, PLY, STL or OM. Every format is parsed by PriMo (OpenMesh's readers are not
+// safe on hostile files: docs/mesh-io.md); OBJ, OFF and OM keep doubles. The result is
+// validated as `mesh_from_soup` does. Throws Error naming the file: unreadable, unknown
+// extension, syntax error (with line number), truncated data, a count larger than the file,
+// empty mesh, out of memory, and every problem `mesh_from_soup` reports.
 Mesh load_mesh(const std::string& path);
+
+// The soup a file's bytes hold, not yet validated; `path` picks the format by its extension
+// and names the file in errors. load_mesh is mesh_from_soup(parse_mesh_bytes(file bytes)).
+// The fuzz targets (fuzz/) call this with arbitrary bytes: it must throw Error or return,
+// never crash, hang or allocate more than a small multiple of the input.
+PolygonSoup parse_mesh_bytes(std::string_view bytes, const std::string& path);
 
 // Validates a soup and builds the mesh; `source` names it in errors (usually the file path).
 // Throws Error for: no faces, an index out of range, a face with fewer than 3 vertices or a

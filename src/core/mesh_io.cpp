@@ -28,6 +28,7 @@
 #include <system_error>
 
 #include "primo/error.h"
+#include "mesh_readers.h"
 #include "silence_openmesh.h"
 
 namespace fs = std::filesystem;
@@ -76,11 +77,7 @@ Format format_or_fail(const std::string& path, const std::string& action) {
   return *format;
 }
 
-std::string in_quotes(std::string_view text) {
-  constexpr size_t kMaxShown = 40;
-  if (text.size() > kMaxShown) return "'" + std::string(text.substr(0, kMaxShown)) + "...'";
-  return "'" + std::string(text) + "'";
-}
+std::string in_quotes(std::string_view text) { return detail::quoted(text); }
 
 // ---------------------------------------------------------------------------------------------
 // Reading files and splitting text
@@ -120,18 +117,20 @@ class LineReader {
 
   bool next(std::string_view& line) {
     if (position_ >= text_.size()) return false;
-    size_t end = text_.find('\n', position_);
+    // LF, CRLF or a lone CR (old Mac files): a CR-only file is not one long comment line.
+    size_t end = text_.find_first_of("\r\n", position_);
     if (end == std::string_view::npos) end = text_.size();
     line = text_.substr(position_, end - position_);
     position_ = end + 1;
+    if (end + 1 < text_.size() && text_[end] == '\r' && text_[end + 1] == '\n') ++position_;
     ++number_;
-    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
     const size_t comment = line.find('#');
     if (comment != std::string_view::npos) line = line.substr(0, comment);
     return true;
   }
 
   int number() const { return number_; }
+  size_t position() const { return std::min(position_, text_.size()); }
 
  private:
   std::string_view text_;
@@ -335,8 +334,8 @@ OffHeader parse_off_keyword(std::string_view word) {
   return header;
 }
 
-// Returns nothing for binary OFF, which OpenMesh reads.
-std::optional<PolygonSoup> parse_off(const std::string& path, std::string_view text) {
+// Binary OFF ("OFF BINARY") is read by detail::read_binary_off from the byte after that line.
+PolygonSoup parse_off(const std::string& path, std::string_view text) {
   LineReader lines(text);
   std::string_view line;
   std::vector<std::string_view> words;
@@ -357,7 +356,8 @@ std::optional<PolygonSoup> parse_off(const std::string& path, std::string_view t
     if (!header.valid)
       fail_at_line(path, lines.number(), "expected the 'OFF' header, found " + in_quotes(words[0]));
     if (!header.unsupported.empty()) fail_at_line(path, lines.number(), header.unsupported);
-    if (words.size() > 1 && words[1] == "BINARY") return std::nullopt;
+    if (words.size() > 1 && words[1] == "BINARY")
+      return detail::read_binary_off(path, words[0], text.substr(lines.position()));
     counts_start = 1;
     if (words.size() == 1) {
       if (!next_words()) fail(path, "the file ends after the header (expected the counts 'V F E')");
@@ -433,30 +433,6 @@ std::optional<PolygonSoup> parse_off(const std::string& path, std::string_view t
     fail_at_line(path, lines.number(),
                  "unexpected data after the last of the " + std::to_string(n_faces) +
                      " faces the header declares");
-  return soup;
-}
-
-// ---------------------------------------------------------------------------------------------
-// OpenMesh formats
-
-// OpenMesh merges STL's repeated corners into shared vertices, and it may already have changed
-// non-manifold input (it duplicates vertices rather than fail); validation sees the result.
-PolygonSoup read_with_openmesh(const std::string& path, const std::string& format_name) {
-  silence_openmesh();
-  check_readable(path);
-  Mesh mesh;
-  OpenMesh::IO::Options options;  // positions and faces only
-  if (!OpenMesh::IO::read_mesh(mesh, path, options))
-    fail(path, "cannot read: not a valid " + format_name + " file (OpenMesh rejected it)");
-  PolygonSoup soup;
-  soup.points.reserve(mesh.n_vertices());
-  for (auto v : mesh.vertices()) soup.points.push_back(mesh.point(v));
-  soup.faces.reserve(mesh.n_faces());
-  for (auto f : mesh.faces()) {
-    std::vector<int> face;
-    for (auto v : f.vertices()) face.push_back(v.idx());
-    soup.faces.push_back(std::move(face));
-  }
   return soup;
 }
 
@@ -557,25 +533,24 @@ void write_bytes(const std::string& temp_path, const std::string& bytes,
 
 }  // namespace
 
-Mesh load_mesh(const std::string& path) {
-  const Format format = format_or_fail(path, "cannot read");
-  switch (format) {
-    case Format::Obj:
-      return mesh_from_soup(parse_obj(path, read_file(path)), path);
-    case Format::Off: {
-      const std::string text = read_file(path);
-      std::optional<PolygonSoup> soup = parse_off(path, text);
-      if (!soup) soup = read_with_openmesh(path, "binary OFF");
-      return mesh_from_soup(*soup, path);
-    }
-    case Format::Ply:
-      return mesh_from_soup(read_with_openmesh(path, "PLY"), path);
-    case Format::Stl:
-      return mesh_from_soup(read_with_openmesh(path, "STL"), path);
-    case Format::Om:
-      return mesh_from_soup(read_with_openmesh(path, "OM"), path);
+PolygonSoup parse_mesh_bytes(std::string_view bytes, const std::string& path) {
+  switch (format_or_fail(path, "cannot read")) {
+    case Format::Obj: return parse_obj(path, bytes);
+    case Format::Off: return parse_off(path, bytes);
+    case Format::Ply: return detail::read_ply(path, bytes);
+    case Format::Stl: return detail::read_stl(path, bytes);
+    case Format::Om: return detail::read_om(path, bytes);
   }
   fail(path, "cannot read: unhandled format");
+}
+
+Mesh load_mesh(const std::string& path) {
+  format_or_fail(path, "cannot read");  // before the file is opened
+  try {
+    return mesh_from_soup(parse_mesh_bytes(read_file(path), path), path);
+  } catch (const std::bad_alloc&) {
+    fail(path, "cannot read: out of memory");
+  }
 }
 
 void save_mesh(const Mesh& mesh, const std::string& path) {
