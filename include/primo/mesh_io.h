@@ -37,9 +37,14 @@ PolygonSoup parse_mesh_bytes(std::string_view bytes, const std::string& path);
 Mesh mesh_from_soup(const PolygonSoup& soup, const std::string& source);
 
 // Writes the mesh by extension (OBJ, OFF, PLY, STL, OM) through a temporary file in the
-// same folder that is renamed into place, so a failure never leaves a partial file. OBJ and
+// same folder that is renamed into place (primo/output_files.h), so a failure never leaves a
+// partial file. OBJ and
 // OFF are written with 17 significant digits. STL holds triangles only, so n-gons are
 // fan-triangulated in the written file. Throws Error naming the file on failure.
 void save_mesh(const Mesh& mesh, const std::string& path);
+
+// The bytes save_mesh writes for `path`'s format (what primo::StagedOutputs stages, so that a
+// command can write a mesh and its statistics together). Throws Error naming `path`.
+std::string mesh_file_bytes(const Mesh& mesh, const std::string& path);
 
 }  // namespace primo

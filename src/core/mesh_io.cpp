@@ -28,6 +28,7 @@
 #include <system_error>
 
 #include "primo/error.h"
+#include "primo/output_files.h"
 #include "mesh_readers.h"
 #include "silence_openmesh.h"
 
@@ -518,19 +519,6 @@ std::string openmesh_bytes(const Mesh& mesh, const std::string& path, const std:
   return stream.str();
 }
 
-void write_bytes(const std::string& temp_path, const std::string& bytes,
-                 const std::string& target_path) {
-  std::FILE* file = std::fopen(temp_path.c_str(), "wb");
-  if (!file)
-    fail(target_path, "cannot save: cannot create the temporary file " + in_quotes(temp_path) +
-                          ": " + std::strerror(errno));
-  int error = 0;
-  if (std::fwrite(bytes.data(), 1, bytes.size(), file) != bytes.size() || std::fflush(file) != 0)
-    error = errno;
-  if (std::fclose(file) != 0 && error == 0) error = errno;
-  if (error != 0) fail(target_path, std::string("cannot save: ") + std::strerror(error));
-}
-
 }  // namespace
 
 PolygonSoup parse_mesh_bytes(std::string_view bytes, const std::string& path) {
@@ -553,51 +541,35 @@ Mesh load_mesh(const std::string& path) {
   }
 }
 
-void save_mesh(const Mesh& mesh, const std::string& path) {
+std::string mesh_file_bytes(const Mesh& mesh, const std::string& path) {
   const Format format = format_or_fail(path, "cannot save");
+  try {
+    switch (format) {
+      case Format::Obj: return obj_text(mesh);
+      case Format::Off: return off_text(mesh);
+      case Format::Ply: return openmesh_bytes(mesh, path, "ply", OpenMesh::IO::Options::Default);
+      case Format::Om: return openmesh_bytes(mesh, path, "om", OpenMesh::IO::Options::Default);
+      case Format::Stl:
+        // Binary STL: exact float32, a fraction of the size of OpenMesh's 10-digit ASCII.
+        return openmesh_bytes(fan_triangulated(mesh), path, "stl", OpenMesh::IO::Options::Binary);
+    }
+  } catch (const std::bad_alloc&) {
+    fail(path, "cannot save: out of memory");
+  }
+  fail(path, "cannot save: unhandled format");
+}
+
+void save_mesh(const Mesh& mesh, const std::string& path) {
+  format_or_fail(path, "cannot save");
   const fs::path target(path);
   const fs::path folder = target.has_parent_path() ? target.parent_path() : fs::path(".");
   std::error_code error;
   if (!fs::is_directory(folder, error))
     fail(path, "cannot save: the folder " + in_quotes(folder.string()) + " does not exist");
-
-  // Hidden, unique, and ending in the real extension; the name part is shortened so that the
-  // temporary name stays within the file system's limit when the target's name is long.
-  static std::atomic<unsigned> save_counter{0};
-  const std::string name = target.filename().string();
-  const fs::path temp = folder / ("." + name.substr(0, 100) + ".tmp-" + std::to_string(::getpid()) +
-                                  "-" + std::to_string(save_counter++) + extension_of(path));
-  try {
-    std::string bytes;
-    switch (format) {
-      case Format::Obj:
-        bytes = obj_text(mesh);
-        break;
-      case Format::Off:
-        bytes = off_text(mesh);
-        break;
-      case Format::Ply:
-        bytes = openmesh_bytes(mesh, path, "ply", OpenMesh::IO::Options::Default);
-        break;
-      case Format::Om:
-        bytes = openmesh_bytes(mesh, path, "om", OpenMesh::IO::Options::Default);
-        break;
-      case Format::Stl:
-        // Binary STL: exact float32, a fraction of the size of OpenMesh's 10-digit ASCII.
-        bytes = openmesh_bytes(fan_triangulated(mesh), path, "stl", OpenMesh::IO::Options::Binary);
-        break;
-    }
-    write_bytes(temp.string(), bytes, path);
-    if (std::rename(temp.c_str(), path.c_str()) != 0)
-      fail(path, std::string("cannot save: cannot move the temporary file into place: ") +
-                     std::strerror(errno));
-  } catch (const Error&) {
-    fs::remove(temp, error);
-    throw;
-  } catch (const std::exception& e) {
-    fs::remove(temp, error);
-    fail(path, std::string("cannot save: ") + e.what());
-  }
+  if (fs::is_directory(target, error)) fail(path, "cannot save: this is a folder, not a file");
+  StagedOutputs out;
+  out.stage_mesh(path, mesh);
+  out.commit();
 }
 
 }  // namespace primo
