@@ -17,6 +17,8 @@ packages=(
   # tests (GoogleTest; the editor's end-to-end tests under Xvfb) and the micro-benchmarks
   # (Google Benchmark: primo_microbench)
   libgtest-dev libgmock-dev libbenchmark-dev xvfb xauth xdotool
+  # fuzzing (scripts/fuzz.sh): clang with libFuzzer and the sanitizer runtimes
+  clang libclang-rt-14-dev
 )
 
 missing=()
