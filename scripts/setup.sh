@@ -19,6 +19,8 @@ packages=(
   libgtest-dev libbenchmark-dev xvfb xauth xdotool
   # the Python module and its tests
   python3-dev pybind11-dev python3-numpy python3-pytest
+  # fuzzing (scripts/fuzz.sh): clang with libFuzzer and the sanitizer runtimes
+  clang libclang-rt-14-dev
 )
 
 missing=()

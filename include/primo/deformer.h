@@ -88,6 +88,9 @@ struct SolveReport {
   int path_iterations = 0;  // iterations spent on them (not in `iterations`)
   int hierarchical_cycles = 0;  // of SolveOptions::hierarchical_start (not in `iterations`)
   std::vector<double> energies;  // after each iteration at the final targets
+  // "tolerance", "energy floor", "no further decrease", "max_iterations", "path budget",
+  // "already converged", or "not finite": the energy at the start, or after an iteration, was
+  // NaN or infinite (settings too large); the state is the last finite one, converged false.
   std::string stop_reason;
 };
 
@@ -166,6 +169,9 @@ class Deformer {
   // One iteration of `options.method` from energy e; returns the energy after, or nullopt
   // when no step lowers the energy (a minimum to machine precision).
   std::optional<double> iterate(const SolveOptions& options, double e, SolveReport& report);
+  // iterate(), except that an iteration ending in a non-finite energy is undone and sets
+  // report.stop_reason to "not finite".
+  std::optional<double> guarded_iterate(const SolveOptions& options, double e, SolveReport& report);
   bool make_solver(const SolveOptions& options);  // whether it was made now
   double body_energy(int body) const;  // of the joints and springs on one body
   void rebuild_springs();
@@ -177,6 +183,7 @@ class Deformer {
   std::vector<Force> forces_;
   RigidSystem system_;
   std::vector<BodyState> state_;
+  std::vector<BodyState> last_good_state_;  // before the current iteration (guarded_iterate)
   std::unique_ptr<GlobalSolver> global_;  // made on first use: symbolic analysis once
   std::unique_ptr<HierarchicalSolver> hierarchical_;  // made on first use
   void problem_changed();  // targets or state were set from outside

@@ -26,7 +26,8 @@ std::vector<Vec3> compute_vertex_normals(const Mesh& mesh, const FaceGeometry& f
 // Mean length over unique undirected edges.
 double mean_edge_length(const Mesh& mesh);
 
-// Length of the diagonal of the axis-aligned bounding box of all vertices.
+// Length of the diagonal of the axis-aligned bounding box of the vertices faces use (isolated
+// vertices do not count: one far away would change every length scaled by the diagonal).
 double bounding_box_diagonal(const Mesh& mesh);
 
 // Area-weighted mean of the given faces' centroids.

@@ -3,6 +3,7 @@
 // vertex indices in scenarios mean what they mean in the file.
 
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "primo/mesh.h"
@@ -15,13 +16,20 @@ struct PolygonSoup {
   std::vector<std::vector<int>> faces;
 };
 
-// Reads OBJ, OFF, PLY, STL or OM, and the scene formats glTF 2.0 (.gltf, .glb), FBX, COLLADA
-// (.dae) and 3MF (through Assimp, as primo/mesh_import.h says: load_mesh_noted also returns
-// what was merged and ignored). OBJ and OFF are parsed here in double precision (OpenMesh 9
-// parses them as float); PLY, STL and OM go through OpenMesh. The result is validated as
-// `mesh_from_soup` does. Throws Error naming the file: unreadable, unknown extension,
-// syntax error (with line number), empty mesh, and every problem `mesh_from_soup` reports.
+// Reads OBJ, OFF, PLY, STL or OM, parsed by PriMo (OpenMesh's readers are not safe on hostile
+// files: docs/mesh-io.md; OBJ, OFF and OM keep doubles), and the scene formats glTF 2.0 (.gltf,
+// .glb), FBX, COLLADA (.dae) and 3MF through Assimp, as primo/mesh_import.h says
+// (load_mesh_noted also returns what was merged and ignored). The result is validated as
+// `mesh_from_soup` does. Throws Error naming the file: unreadable, unknown extension, syntax
+// error (with line number), truncated data, a count larger than the file, empty mesh, out of
+// memory, and every problem `mesh_from_soup` reports.
 Mesh load_mesh(const std::string& path);
+
+// The soup a file's bytes hold, not yet validated; `path` picks the format by its extension
+// and names the file in errors. load_mesh is mesh_from_soup(parse_mesh_bytes(file bytes)).
+// The fuzz targets (fuzz/) call this with arbitrary bytes: it must throw Error or return,
+// never crash, hang or allocate more than a small multiple of the input.
+PolygonSoup parse_mesh_bytes(std::string_view bytes, const std::string& path);
 
 // Validates a soup and builds the mesh; `source` names it in errors (usually the file path).
 // Throws Error for: no faces, an index out of range, a face with fewer than 3 vertices or a
@@ -31,10 +39,15 @@ Mesh load_mesh(const std::string& path);
 Mesh mesh_from_soup(const PolygonSoup& soup, const std::string& source);
 
 // Writes the mesh by extension (OBJ, OFF, PLY, STL, OM, glTF .gltf/.glb) through a temporary
-// file in the same folder that is renamed into place, so a failure never leaves a partial file.
-// OBJ and OFF are written with 17 significant digits. STL and glTF hold triangles only, so
-// n-gons are fan-triangulated in the written file (glTF keeps the face sizes for PriMo to read
-// back). FBX, COLLADA and 3MF are refused. Throws Error naming the file on failure.
+// file in the same folder that is renamed into place (primo/output_files.h), so a failure never
+// leaves a partial file. OBJ and OFF are written with 17 significant digits. STL and glTF hold
+// triangles only, so n-gons are fan-triangulated in the written file (glTF keeps the face sizes
+// for PriMo to read back). FBX, COLLADA and 3MF are refused. Throws Error naming the file on
+// failure.
 void save_mesh(const Mesh& mesh, const std::string& path);
+
+// The bytes save_mesh writes for `path`'s format (what primo::StagedOutputs stages, so that a
+// command can write a mesh and its statistics together). Throws Error naming `path`.
+std::string mesh_file_bytes(const Mesh& mesh, const std::string& path);
 
 }  // namespace primo

@@ -1,18 +1,68 @@
 #pragma once
-// Writing result files so that a failure never leaves a partial file behind: the commands, the
-// editor (scenarios, sessions, preferences, autosaves) and the benchmarks all write through
-// these. Meshes have their own atomic writer, save_mesh (primo/mesh_io.h).
+// Writing result files so that a failure never loses work: the commands, the editor (scenarios,
+// sessions, preferences, autosaves) and the benchmarks all write through these, and save_mesh
+// (primo/mesh_io.h) too.
+//
+// Every file is first written in full to a temporary file beside its target, named
+// ".<name>.primo-partial-<pid>-<n><ext>", flushed to disk, and only then renamed over the
+// target. A command that writes several files (`deform -o OUT --stats STATS`) stages them all
+// and renames them only when every one is complete, so either all results are new or all
+// targets are as they were. A process killed while staging leaves its temporary file; the next
+// write to the same target removes the temporaries of processes that no longer run.
 
 #include <string>
+#include <utility>
+#include <vector>
+
+#include "primo/mesh.h"
 
 namespace primo {
 
 // Throws primo::Error unless `path` has a mesh extension we can write and its folder exists:
 // a command checks this before minutes of work rather than after them.
 void check_mesh_output_path(const std::string& path);
+// The same for any output file (statistics, scenarios): its folder exists and the path is not
+// a folder, a device (/dev/full), a pipe or another special file.
+void check_output_path(const std::string& path);
 
-// Writes `text` to a temporary file beside `path` and renames it into place. Throws
-// primo::Error naming `path` when its folder does not exist or the file cannot be written.
+// A file a command reads or writes, with how its command line names it ("-o", "--stats",
+// "the scenario", "the mesh"), for check_distinct_files.
+struct NamedFile {
+  std::string role;
+  std::string path;
+};
+// Throws primo::Error "<path>: <role> is the same file as <other role> (<other path>); nothing
+// was written" when two outputs, or an output and an input, are the same file (also through
+// links or different spellings of the path). Empty paths are skipped.
+void check_distinct_files(const std::vector<NamedFile>& outputs, const std::vector<NamedFile>& inputs);
+
+// Result files written together (see above). Nothing reaches a target before commit(); the
+// destructor removes whatever was staged and not committed.
+class StagedOutputs {
+ public:
+  StagedOutputs() = default;
+  StagedOutputs(const StagedOutputs&) = delete;
+  StagedOutputs& operator=(const StagedOutputs&) = delete;
+  ~StagedOutputs();
+
+  // Writes the temporary file now; throws primo::Error naming `path` on any failure (missing
+  // or read-only folder, full disk, special file at the target).
+  void stage(const std::string& path, const std::string& bytes);
+  void stage_mesh(const std::string& path, const Mesh& mesh);
+  // Renames every staged file into place, in the order staged.
+  void commit();
+
+ private:
+  std::vector<std::pair<std::string, std::string>> staged_;  // temporary file, target
+};
+
+// Writes `text` to `path` through a StagedOutputs of one file. Throws primo::Error naming
+// `path` when its folder does not exist or the file cannot be written.
 void write_text_atomically(const std::string& path, const std::string& text);
+
+// Removes what processes that no longer run left in `folder` under names that start with
+// `prefix` and continue with "<pid>" and then '-' or the end ("primo-replay-" for the frames of
+// a killed `primo replay --frames`). Ignores every error.
+void remove_stale_partials(const std::string& folder, const std::string& prefix);
 
 }  // namespace primo

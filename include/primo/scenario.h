@@ -12,6 +12,10 @@
 
 namespace primo {
 
+// Every number of a scenario or session file is at most this in magnitude: values beyond it
+// (a stiffness of 1e308) are finite but overflow the energy.
+inline constexpr double kMaxScenarioMagnitude = 1e15;
+
 // Exactly one kind is set, as in the file.
 struct Selection {
   enum class Kind { Faces, Vertices, Box, Sphere, All };

@@ -24,6 +24,13 @@ namespace primo {
 
 inline constexpr const char* kSessionFormat = "primo-session/1";
 
+// Limits of what a session file may claim, checked when it is read (docs/sessions.md): the
+// last frame (10,000,000: 46 hours at 60 frames a second; the frame count stays far from
+// INT_MAX) and the largest face index of the initial painted factors (made into an array
+// before the mesh is known).
+inline constexpr int kMaxSessionFrame = 10000000;
+inline constexpr int kMaxSessionFaces = 1 << 24;
+
 // The painted layer a Factors event changes: the height factor (softer joints below 1) or the
 // width factor (prisms shrunk or grown about their centroids).
 enum class FactorLayer { Height, Width };

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <new>
+#include <vector>
 #include <nlohmann/json.hpp>
 
 #include "commands.h"
@@ -27,23 +29,52 @@ struct DeformArguments {
   bool one_step = false;
 };
 
+// A message from the engine names what is wrong but not the file it came from.
+[[noreturn]] void rethrow_naming(const std::string& file) {
+  try {
+    throw;
+  } catch (const Error& e) {
+    const std::string what = e.what();
+    if (what.rfind(file + ":", 0) == 0) throw;
+    throw Error(file + ": " + what);
+  } catch (const std::bad_alloc&) {
+    throw Error(file + ": out of memory (the mesh or the solver needs more than this machine has)");
+  }
+}
+
 int run_deform(const DeformArguments& args) {
+  // Every output is checked before any work: its folder, not a special file, and not the same
+  // file as another output or an input (-o over the input mesh would destroy it).
   check_mesh_output_path(args.output);
+  if (!args.stats.empty()) check_output_path(args.stats);
+  const std::vector<NamedFile> outputs = {{"-o", args.output}, {"--stats", args.stats}};
+  check_distinct_files(outputs, {{"the scenario", args.scenario}});
   const Scenario scenario = load_scenario(args.scenario);
+  check_distinct_files(outputs, {{"the scenario", args.scenario}, {"the scenario's mesh", scenario.mesh_path}});
   // A scene file (glTF, FBX, ...) says what was joined, merged or left out: a note, not an error.
   LoadedMesh loaded = load_mesh_noted(scenario.mesh_path);
   if (!loaded.note.empty()) std::fprintf(stderr, "primo deform: note: %s\n", loaded.note.c_str());
   const Mesh mesh = std::move(loaded.mesh);
-  const ResolvedScenario resolved = resolve_scenario(scenario, mesh);
 
-  Deformer deformer = make_scenario_deformer(mesh, resolved);
-  SolveOptions options = scenario_solve_options(resolved.solver, mesh.n_faces(), args.solver);
-  // By default a large edit is followed in sub-steps (docs/engine.md, "Large steps");
-  // --one-step solves from the format's starting state directly.
-  options.path.enabled = !args.one_step;
-  const SolveReport report = deformer.solve(options);
-
-  const Mesh result = deformer.deformed_mesh(mesh);
+  Mesh result;
+  SolveReport report;
+  SolveOptions options;
+  try {
+    const ResolvedScenario resolved = resolve_scenario(scenario, mesh);
+    Deformer deformer = make_scenario_deformer(mesh, resolved);
+    options = scenario_solve_options(resolved.solver, mesh.n_faces(), args.solver);
+    // By default a large edit is followed in sub-steps (docs/engine.md, "Large steps");
+    // --one-step solves from the format's starting state directly.
+    options.path.enabled = !args.one_step;
+    report = deformer.solve(options);
+    result = deformer.deformed_mesh(mesh);
+  } catch (...) {
+    rethrow_naming(args.scenario);
+  }
+  if (report.stop_reason == "not finite")
+    throw Error(args.scenario + ": the solve produced a non-finite value after " +
+                std::to_string(report.iterations) +
+                " iterations (a setting too large?); nothing was written");
   for (auto v : result.vertices())
     if (!result.point(v).allFinite())
       throw Error(args.scenario + ": the solve produced a non-finite position at vertex " +
@@ -51,7 +82,9 @@ int run_deform(const DeformArguments& args) {
   if (!std::isfinite(report.energy))
     throw Error(args.scenario + ": the solve produced a non-finite energy; nothing was written");
 
-  std::string stats_text;
+  // Both results or neither: staged beside their targets, renamed only when both are complete.
+  StagedOutputs out;
+  out.stage_mesh(args.output, result);
   if (!args.stats.empty()) {
     nlohmann::json stats = {
         {"energy", report.energy},
@@ -69,17 +102,9 @@ int run_deform(const DeformArguments& args) {
         {"hierarchical_cycles", report.hierarchical_cycles},
         {"energies", report.energies},
     };
-    stats_text = stats.dump(2) + "\n";
+    out.stage(args.stats, stats.dump(2) + "\n");
   }
-  save_mesh(result, args.output);
-  if (!args.stats.empty()) {
-    try {
-      write_text_atomically(args.stats, stats_text);
-    } catch (const Error&) {
-      std::remove(args.output.c_str());  // both results or neither
-      throw;
-    }
-  }
+  out.commit();
   if (!report.converged)
     std::fprintf(stderr,
                  "primo deform: warning: %s: not converged after %d iterations (energy %.6g); "

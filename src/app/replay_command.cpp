@@ -13,6 +13,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <new>
+#include <vector>
 #include <nlohmann/json.hpp>
 
 #include "commands.h"
@@ -57,14 +59,43 @@ void limit_threads(int threads) {
   if (auto f = reinterpret_cast<void (*)(int)>(dlsym(RTLD_DEFAULT, "omp_set_num_threads"))) f(threads);
 }
 
+// A message from the engine names what is wrong but not the file it came from.
+[[noreturn]] void rethrow_naming(const std::string& file) {
+  try {
+    throw;
+  } catch (const Error& e) {
+    const std::string what = e.what();
+    if (what.rfind(file + ":", 0) == 0) throw;
+    throw Error(file + ": " + what);
+  } catch (const std::bad_alloc&) {
+    throw Error(file + ": out of memory (the mesh or the solver needs more than this machine has)");
+  }
+}
+
+// More frame files than this is a mistake (--every forgotten on a long session), not a request.
+constexpr long kMaxFrameFiles = 100000;
+
 int run_replay(const ReplayArguments& args) {
   limit_threads(args.threads);
   const auto start = std::chrono::steady_clock::now();
+  // Every output is checked before any work (see deform_command.cpp).
   check_mesh_output_path(args.output);
-  if (!args.frames.empty() && !fs::is_directory(fs::absolute(fs::path(args.frames)).parent_path()))
-    throw Error(args.frames + ": the folder " + fs::absolute(fs::path(args.frames)).parent_path().string() +
-                " does not exist");
+  if (!args.stats.empty()) check_output_path(args.stats);
+  if (!args.frames.empty()) {
+    const fs::path frames_parent = fs::absolute(fs::path(args.frames)).parent_path();
+    if (!fs::is_directory(frames_parent))
+      throw Error(args.frames + ": the folder " + frames_parent.string() + " does not exist");
+  }
+  const std::vector<NamedFile> outputs = {{"-o", args.output}, {"--stats", args.stats}, {"--frames", args.frames}};
+  check_distinct_files(outputs, {{"the session", args.session}, {"--mesh", args.mesh}});
   const Session session = load_session(args.session);
+  check_distinct_files(outputs, {{"the session", args.session},
+                                 {"--mesh", args.mesh},
+                                 {"the session's mesh", session.mesh_path}});
+  if (!args.frames.empty() && session.frames() / args.every + 1 > kMaxFrameFiles)
+    throw Error(args.session + ": --frames --every " + std::to_string(args.every) + " would write " +
+                std::to_string(session.frames() / args.every + 1) + " files (at most " +
+                std::to_string(kMaxFrameFiles) + "); use a larger --every");
   Session session_on_mesh;
   // A scene file (glTF, FBX, ...) says what was joined, merged or left out: a note, not an error.
   const auto load = [](const std::string& path) {
@@ -82,11 +113,14 @@ int run_replay(const ReplayArguments& args) {
   }
   validate_session(session_on_mesh, int(mesh.n_faces()));  // before anything is written
 
+  // Frames are written into a hidden folder inside DIR and moved into place at the end; a
+  // killed replay leaves that folder, which the next replay into DIR removes.
   fs::path temp;
   std::vector<std::string> written;
   ReplayOptions options;
   options.iterations_per_frame = args.iterations_per_frame;
   if (!args.frames.empty()) {
+    if (fs::is_directory(args.frames)) remove_stale_partials(args.frames, ".primo-replay-");
     temp = fs::path(args.frames) / (".primo-replay-" + std::to_string(::getpid()));
     options.every = args.every;
     options.on_frame = [&](int frame, const Deformer& d) {
@@ -98,24 +132,29 @@ int run_replay(const ReplayArguments& args) {
   }
   ReplayResult result;
   try {
-    result = replay_session(session_on_mesh, mesh, options);
+    try {
+      result = replay_session(session_on_mesh, mesh, options);
+    } catch (...) {
+      rethrow_naming(args.session);
+    }
     Mesh final_mesh = mesh;
     for (auto v : final_mesh.vertices()) final_mesh.set_point(v, result.positions[size_t(v.idx())]);
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    std::string stats_text;
+    // The final mesh and the statistics together, or neither; then the frames.
+    StagedOutputs out;
+    out.stage_mesh(args.output, final_mesh);
     if (!args.stats.empty())
-      stats_text = nlohmann::json{{"frames", result.frames},
-                                  {"events", session.events.size()},
-                                  {"rebuilds", result.rebuilds},
-                                  {"iterations", result.iterations},
-                                  {"converged", result.converged},
-                                  {"energy", result.energy},
-                                  {"frames_written", written.size()},
-                                  {"seconds", seconds}}
-                       .dump(2) + "\n";
-    save_mesh(final_mesh, args.output);
-    if (!args.stats.empty()) write_text_atomically(args.stats, stats_text);
+      out.stage(args.stats, nlohmann::json{{"frames", result.frames},
+                                           {"events", session.events.size()},
+                                           {"rebuilds", result.rebuilds},
+                                           {"iterations", result.iterations},
+                                           {"converged", result.converged},
+                                           {"energy", result.energy},
+                                           {"frames_written", written.size()},
+                                           {"seconds", seconds}}
+                                    .dump(2) + "\n");
+    out.commit();
     for (const std::string& name : written) fs::rename(temp / name, fs::path(args.frames) / name);
   } catch (...) {
     std::error_code ignored;

@@ -219,6 +219,11 @@ SolveReport Deformer::solve(const SolveOptions& options) {
   const double energy_floor = 1e-14 * diagonal * diagonal;
   report.initial_energy = energy();  // from the last solve when known: a drag frame skips a pass
   report.energy = report.initial_energy;
+  if (!std::isfinite(report.initial_energy)) {
+    // Targets, forces or settings so large that the energy overflows: nothing to solve.
+    report.stop_reason = "not finite";
+    return report;
+  }
   if (settled_ && settled_method_ == options.method && options.tolerance >= settled_tolerance_) {
     report.converged = true;
     report.stop_reason = "already converged";
@@ -237,7 +242,7 @@ SolveReport Deformer::solve(const SolveOptions& options) {
     report.path_steps = cycles.path_steps;
     report.path_iterations = cycles.path_iterations;
     report.hierarchical_cycles = cycles.iterations;
-    if (cycles.stop_reason == "path budget") {
+    if (cycles.stop_reason == "path budget" || cycles.stop_reason == "not finite") {
       report.energy = cycles.energy;
       report.stop_reason = cycles.stop_reason;
       return finish(report);
@@ -252,6 +257,10 @@ SolveReport Deformer::solve(const SolveOptions& options) {
     return finish(report);
   }
   double e = energy();
+  if (report.stop_reason == "not finite") {
+    report.energy = e;
+    return finish(report);
+  }
   report.stop_reason = "max_iterations";
 
   for (int it = 0; it < options.max_iterations; ++it) {
@@ -261,7 +270,8 @@ SolveReport Deformer::solve(const SolveOptions& options) {
       break;
     }
     const double before = e;
-    const std::optional<double> after = iterate(options, before, report);
+    const std::optional<double> after = guarded_iterate(options, before, report);
+    if (report.stop_reason == "not finite") break;
     if (!after) {
       report.converged = true;
       report.stop_reason = "no further decrease";
@@ -276,7 +286,7 @@ SolveReport Deformer::solve(const SolveOptions& options) {
       break;
     }
   }
-  if (!report.converged && e <= energy_floor) {
+  if (!report.converged && e <= energy_floor && report.stop_reason != "not finite") {
     report.converged = true;
     report.stop_reason = "energy floor";
   }
@@ -288,6 +298,20 @@ SolveReport Deformer::solve(const SolveOptions& options) {
   for (size_t h = 0; h < handles_.size(); ++h) solved_transforms_[h] = handles_[h].transform;
   for (size_t f = 0; f < forces_.size(); ++f) solved_offsets_[f] = forces_[f].target_offset;
   return finish(report);
+}
+
+std::optional<double> Deformer::guarded_iterate(const SolveOptions& options, double e,
+                                                SolveReport& report) {
+  last_good_state_ = state_;  // reuses its capacity: a copy, no allocation after the first
+  const std::optional<double> after = iterate(options, e, report);
+  if (!after || std::isfinite(*after)) return after;
+  // An iteration went to NaN or infinity (a value too large for the solver somewhere): the
+  // state before it is kept and the solve stops saying so.
+  state_ = last_good_state_;
+  if (hierarchical_) hierarchical_->restart_acceleration();
+  exact_newton_ = false;
+  report.stop_reason = "not finite";
+  return e;
 }
 
 std::optional<double> Deformer::iterate(const SolveOptions& options, double e,
@@ -358,7 +382,11 @@ bool Deformer::follow_path(const SolveOptions& options, SolveReport& report) {
     }
     double e = energy();
     for (int it = 0; it < options.path.max_step_iterations && budget > 0; ++it, --budget) {
-      const std::optional<double> after = iterate(options, e, report);
+      const std::optional<double> after = guarded_iterate(options, e, report);
+      if (report.stop_reason == "not finite") {
+        known_energy_.reset();
+        return true;  // the solve at the final targets stops at its first check
+      }
       if (!after) break;
       ++report.path_iterations;
       const bool small = e - *after < options.path.step_tolerance * e;

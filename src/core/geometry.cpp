@@ -60,14 +60,18 @@ double mean_edge_length(const Mesh& mesh) {
 }
 
 double bounding_box_diagonal(const Mesh& mesh) {
-  if (mesh.n_vertices() == 0) return 0.0;
+  // Of the vertices that faces use: one unused vertex far away (1e7) would inflate every
+  // length scaled by the diagonal, the energy floor below which a solve stops included.
   Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity());
   Vec3 hi = -lo;
+  bool any = false;
   for (auto v : mesh.vertices()) {
+    if (mesh.is_isolated(v)) continue;
     lo = lo.cwiseMin(mesh.point(v));
     hi = hi.cwiseMax(mesh.point(v));
+    any = true;
   }
-  return (hi - lo).norm();
+  return any ? (hi - lo).norm() : 0.0;
 }
 
 Vec3 area_weighted_centroid(const FaceGeometry& faces, const std::vector<int>& face_indices) {

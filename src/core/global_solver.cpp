@@ -4,6 +4,7 @@
 #include <Eigen/Geometry>
 #include <Eigen/SparseCore>
 #include <algorithm>
+#include <tuple>
 #include <array>
 #include <chrono>
 #include <cmath>
@@ -740,7 +741,9 @@ GlobalStep GlobalSolver::iterate(std::vector<BodyState>& state, bool exact_hessi
     m.timings.assembly += seconds_since(phase);
     fill_rhs();
   }
-  const auto [damping, scale] = m.damping_and_scale();
+  // Not a structured binding: C++17 lambdas cannot capture those (clang refuses; the fuzz build).
+  double damping = 0.0, scale = 0.0;
+  std::tie(damping, scale) = m.damping_and_scale();
 
   // One step of the given kind: factorize, solve, halve the step until the energy drops.
   auto try_step = [&](bool exact) {

@@ -29,7 +29,9 @@
 
 #include "mesh_export_gltf.h"
 #include "primo/error.h"
+#include "mesh_readers.h"
 #include "primo/mesh_import.h"
+#include "primo/output_files.h"
 #include "silence_openmesh.h"
 
 namespace fs = std::filesystem;
@@ -84,11 +86,7 @@ Format format_or_fail(const std::string& path, const std::string& action) {
   return *format;
 }
 
-std::string in_quotes(std::string_view text) {
-  constexpr size_t kMaxShown = 40;
-  if (text.size() > kMaxShown) return "'" + std::string(text.substr(0, kMaxShown)) + "...'";
-  return "'" + std::string(text) + "'";
-}
+std::string in_quotes(std::string_view text) { return detail::quoted(text); }
 
 // ---------------------------------------------------------------------------------------------
 // Reading files and splitting text
@@ -128,18 +126,20 @@ class LineReader {
 
   bool next(std::string_view& line) {
     if (position_ >= text_.size()) return false;
-    size_t end = text_.find('\n', position_);
+    // LF, CRLF or a lone CR (old Mac files): a CR-only file is not one long comment line.
+    size_t end = text_.find_first_of("\r\n", position_);
     if (end == std::string_view::npos) end = text_.size();
     line = text_.substr(position_, end - position_);
     position_ = end + 1;
+    if (end + 1 < text_.size() && text_[end] == '\r' && text_[end + 1] == '\n') ++position_;
     ++number_;
-    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
     const size_t comment = line.find('#');
     if (comment != std::string_view::npos) line = line.substr(0, comment);
     return true;
   }
 
   int number() const { return number_; }
+  size_t position() const { return std::min(position_, text_.size()); }
 
  private:
   std::string_view text_;
@@ -343,8 +343,8 @@ OffHeader parse_off_keyword(std::string_view word) {
   return header;
 }
 
-// Returns nothing for binary OFF, which OpenMesh reads.
-std::optional<PolygonSoup> parse_off(const std::string& path, std::string_view text) {
+// Binary OFF ("OFF BINARY") is read by detail::read_binary_off from the byte after that line.
+PolygonSoup parse_off(const std::string& path, std::string_view text) {
   LineReader lines(text);
   std::string_view line;
   std::vector<std::string_view> words;
@@ -365,7 +365,8 @@ std::optional<PolygonSoup> parse_off(const std::string& path, std::string_view t
     if (!header.valid)
       fail_at_line(path, lines.number(), "expected the 'OFF' header, found " + in_quotes(words[0]));
     if (!header.unsupported.empty()) fail_at_line(path, lines.number(), header.unsupported);
-    if (words.size() > 1 && words[1] == "BINARY") return std::nullopt;
+    if (words.size() > 1 && words[1] == "BINARY")
+      return detail::read_binary_off(path, words[0], text.substr(lines.position()));
     counts_start = 1;
     if (words.size() == 1) {
       if (!next_words()) fail(path, "the file ends after the header (expected the counts 'V F E')");
@@ -441,30 +442,6 @@ std::optional<PolygonSoup> parse_off(const std::string& path, std::string_view t
     fail_at_line(path, lines.number(),
                  "unexpected data after the last of the " + std::to_string(n_faces) +
                      " faces the header declares");
-  return soup;
-}
-
-// ---------------------------------------------------------------------------------------------
-// OpenMesh formats
-
-// OpenMesh merges STL's repeated corners into shared vertices, and it may already have changed
-// non-manifold input (it duplicates vertices rather than fail); validation sees the result.
-PolygonSoup read_with_openmesh(const std::string& path, const std::string& format_name) {
-  silence_openmesh();
-  check_readable(path);
-  Mesh mesh;
-  OpenMesh::IO::Options options;  // positions and faces only
-  if (!OpenMesh::IO::read_mesh(mesh, path, options))
-    fail(path, "cannot read: not a valid " + format_name + " file (OpenMesh rejected it)");
-  PolygonSoup soup;
-  soup.points.reserve(mesh.n_vertices());
-  for (auto v : mesh.vertices()) soup.points.push_back(mesh.point(v));
-  soup.faces.reserve(mesh.n_faces());
-  for (auto f : mesh.faces()) {
-    std::vector<int> face;
-    for (auto v : f.vertices()) face.push_back(v.idx());
-    soup.faces.push_back(std::move(face));
-  }
   return soup;
 }
 
@@ -550,100 +527,73 @@ std::string openmesh_bytes(const Mesh& mesh, const std::string& path, const std:
   return stream.str();
 }
 
-void write_bytes(const std::string& temp_path, const std::string& bytes,
-                 const std::string& target_path) {
-  std::FILE* file = std::fopen(temp_path.c_str(), "wb");
-  if (!file)
-    fail(target_path, "cannot save: cannot create the temporary file " + in_quotes(temp_path) +
-                          ": " + std::strerror(errno));
-  int error = 0;
-  if (std::fwrite(bytes.data(), 1, bytes.size(), file) != bytes.size() || std::fflush(file) != 0)
-    error = errno;
-  if (std::fclose(file) != 0 && error == 0) error = errno;
-  if (error != 0) fail(target_path, std::string("cannot save: ") + std::strerror(error));
-}
-
 }  // namespace
 
-Mesh load_mesh(const std::string& path) {
-  const Format format = format_or_fail(path, "cannot read");
-  switch (format) {
-    case Format::Obj:
-      return mesh_from_soup(parse_obj(path, read_file(path)), path);
-    case Format::Off: {
-      const std::string text = read_file(path);
-      std::optional<PolygonSoup> soup = parse_off(path, text);
-      if (!soup) soup = read_with_openmesh(path, "binary OFF");
-      return mesh_from_soup(*soup, path);
-    }
-    case Format::Ply:
-      return mesh_from_soup(read_with_openmesh(path, "PLY"), path);
-    case Format::Stl:
-      return mesh_from_soup(read_with_openmesh(path, "STL"), path);
-    case Format::Om:
-      return mesh_from_soup(read_with_openmesh(path, "OM"), path);
+PolygonSoup parse_mesh_bytes(std::string_view bytes, const std::string& path) {
+  switch (format_or_fail(path, "cannot read")) {
+    case Format::Obj: return parse_obj(path, bytes);
+    case Format::Off: return parse_off(path, bytes);
+    case Format::Ply: return detail::read_ply(path, bytes);
+    case Format::Stl: return detail::read_stl(path, bytes);
+    case Format::Om: return detail::read_om(path, bytes);
     case Format::Gltf:
     case Format::Glb:
     case Format::Scene:
-      return load_mesh_noted(path).mesh;
+      // A .gltf's buffers lie beside it: scene files are read from the file (load_mesh).
+      fail(path, "cannot read: scene formats are read from their file, not from bytes");
   }
   fail(path, "cannot read: unhandled format");
 }
 
-void save_mesh(const Mesh& mesh, const std::string& path) {
+Mesh load_mesh(const std::string& path) {
+  const Format format = format_or_fail(path, "cannot read");  // before the file is opened
+  // Scene formats go to Assimp with the file's name: a .gltf finds its buffers beside it.
+  if (format == Format::Gltf || format == Format::Glb || format == Format::Scene)
+    return load_mesh_noted(path).mesh;
+  try {
+    return mesh_from_soup(parse_mesh_bytes(read_file(path), path), path);
+  } catch (const std::bad_alloc&) {
+    fail(path, "cannot read: out of memory");
+  }
+}
+
+std::string mesh_file_bytes(const Mesh& mesh, const std::string& path) {
   const Format format = format_or_fail(path, "cannot save");
   if (format == Format::Scene)
     fail(path, "cannot save: " + fs::path(path).extension().string() +
                    " files are read, not written (save as .gltf or .glb for the same tools)");
+  try {
+    switch (format) {
+      case Format::Obj: return obj_text(mesh);
+      case Format::Off: return off_text(mesh);
+      case Format::Ply: return openmesh_bytes(mesh, path, "ply", OpenMesh::IO::Options::Default);
+      case Format::Om: return openmesh_bytes(mesh, path, "om", OpenMesh::IO::Options::Default);
+      case Format::Stl:
+        // Binary STL: exact float32, a fraction of the size of OpenMesh's 10-digit ASCII.
+        return openmesh_bytes(fan_triangulated(mesh), path, "stl", OpenMesh::IO::Options::Binary);
+      case Format::Gltf:
+      case Format::Glb:
+        return detail::gltf_bytes(mesh, format == Format::Glb, fs::path(path).stem().string(), path);
+      case Format::Scene:
+        break;  // refused above
+    }
+  } catch (const std::bad_alloc&) {
+    fail(path, "cannot save: out of memory");
+  }
+  fail(path, "cannot save: unhandled format");
+}
+
+void save_mesh(const Mesh& mesh, const std::string& path) {
+  format_or_fail(path, "cannot save");
   const fs::path target(path);
   const fs::path folder = target.has_parent_path() ? target.parent_path() : fs::path(".");
   std::error_code error;
   if (!fs::is_directory(folder, error))
     fail(path, "cannot save: the folder " + in_quotes(folder.string()) + " does not exist");
-
-  // Hidden, unique, and ending in the real extension; the name part is shortened so that the
-  // temporary name stays within the file system's limit when the target's name is long.
-  static std::atomic<unsigned> save_counter{0};
-  const std::string name = target.filename().string();
-  const fs::path temp = folder / ("." + name.substr(0, 100) + ".tmp-" + std::to_string(::getpid()) +
-                                  "-" + std::to_string(save_counter++) + extension_of(path));
-  try {
-    std::string bytes;
-    switch (format) {
-      case Format::Obj:
-        bytes = obj_text(mesh);
-        break;
-      case Format::Off:
-        bytes = off_text(mesh);
-        break;
-      case Format::Ply:
-        bytes = openmesh_bytes(mesh, path, "ply", OpenMesh::IO::Options::Default);
-        break;
-      case Format::Om:
-        bytes = openmesh_bytes(mesh, path, "om", OpenMesh::IO::Options::Default);
-        break;
-      case Format::Stl:
-        // Binary STL: exact float32, a fraction of the size of OpenMesh's 10-digit ASCII.
-        bytes = openmesh_bytes(fan_triangulated(mesh), path, "stl", OpenMesh::IO::Options::Binary);
-        break;
-      case Format::Gltf:
-      case Format::Glb:
-        bytes = detail::gltf_bytes(mesh, format == Format::Glb, target.stem().string(), path);
-        break;
-      case Format::Scene:
-        break;  // refused above
-    }
-    write_bytes(temp.string(), bytes, path);
-    if (std::rename(temp.c_str(), path.c_str()) != 0)
-      fail(path, std::string("cannot save: cannot move the temporary file into place: ") +
-                     std::strerror(errno));
-  } catch (const Error&) {
-    fs::remove(temp, error);
-    throw;
-  } catch (const std::exception& e) {
-    fs::remove(temp, error);
-    fail(path, std::string("cannot save: ") + e.what());
-  }
+  if (fs::is_directory(target, error)) fail(path, "cannot save: this is a folder, not a file");
+  StagedOutputs out;
+  out.stage_mesh(path, mesh);
+  out.commit();
 }
 
 }  // namespace primo

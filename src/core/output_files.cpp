@@ -1,14 +1,20 @@
 #include "primo/output_files.h"
 
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cctype>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
-#include <fstream>
 
 #include "primo/error.h"
+#include "primo/mesh_io.h"
 
 namespace fs = std::filesystem;
 
@@ -22,7 +28,47 @@ std::string extension_of(const std::string& path) {
   return ext;
 }
 
+fs::path folder_of(const std::string& path) {
+  const fs::path target(path);
+  return target.has_parent_path() ? target.parent_path() : fs::path(".");
+}
+
+bool process_alive(long pid) {
+  return pid > 0 && (::kill(pid_t(pid), 0) == 0 || errno != ESRCH);
+}
+
+// Writes all of `bytes` to a new file and flushes it to disk; returns errno, 0 on success.
+int write_whole_file(const std::string& file, const std::string& bytes) {
+  const int fd = ::open(file.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+  if (fd < 0) return errno;
+  size_t done = 0;
+  int error = 0;
+  while (done < bytes.size()) {
+    const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      error = errno;
+      break;
+    }
+    done += size_t(n);
+  }
+  if (error == 0 && ::fsync(fd) != 0 && errno != EINVAL) error = errno;
+  if (::close(fd) != 0 && error == 0) error = errno;
+  return error;
+}
+
 }  // namespace
+
+void check_output_path(const std::string& path) {
+  const fs::path folder = folder_of(path);
+  std::error_code ec;
+  if (!fs::is_directory(folder, ec))
+    throw Error(path + ": the folder " + fs::absolute(folder, ec).string() + " does not exist");
+  const fs::file_status status = fs::status(path, ec);
+  if (fs::is_directory(status)) throw Error(path + ": cannot write: this is a folder, not a file");
+  if (fs::exists(status) && !fs::is_regular_file(status))
+    throw Error(path + ": cannot write: this is a device or another special file, not a regular file");
+}
 
 void check_mesh_output_path(const std::string& path) {
   const std::string ext = extension_of(path);
@@ -30,32 +76,93 @@ void check_mesh_output_path(const std::string& path) {
       ext != ".gltf" && ext != ".glb")
     throw Error(path + ": unknown output format '" + ext +
                 "' (use .obj, .off, .ply, .stl, .om, .gltf or .glb)");
-  const fs::path folder = fs::absolute(fs::path(path)).parent_path();
-  if (!fs::is_directory(folder)) throw Error(path + ": the folder " + folder.string() + " does not exist");
+  check_output_path(path);
+}
+
+void check_distinct_files(const std::vector<NamedFile>& outputs, const std::vector<NamedFile>& inputs) {
+  const auto same = [](const std::string& a, const std::string& b) {
+    std::error_code ec;
+    if (fs::exists(a, ec) && fs::exists(b, ec)) return fs::equivalent(a, b, ec);
+    return fs::weakly_canonical(fs::absolute(a, ec), ec) == fs::weakly_canonical(fs::absolute(b, ec), ec);
+  };
+  for (size_t i = 0; i < outputs.size(); ++i) {
+    if (outputs[i].path.empty()) continue;
+    const auto refuse = [&](const NamedFile& other, const char* kind) {
+      throw Error(outputs[i].path + ": " + outputs[i].role + " is the same file as " + kind +
+                  other.role + " (" + other.path + "); nothing was written");
+    };
+    for (size_t j = 0; j < i; ++j)
+      if (!outputs[j].path.empty() && same(outputs[i].path, outputs[j].path)) refuse(outputs[j], "");
+    for (const NamedFile& input : inputs)
+      if (!input.path.empty() && same(outputs[i].path, input.path)) refuse(input, "");
+  }
+}
+
+void remove_stale_partials(const std::string& folder, const std::string& prefix) {
+  std::error_code ec;
+  for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (name.compare(0, prefix.size(), prefix) != 0) continue;
+    size_t i = prefix.size();
+    long pid = 0;
+    while (i < name.size() && std::isdigit(static_cast<unsigned char>(name[i])) && pid < 1000000000)
+      pid = pid * 10 + (name[i++] - '0');
+    if (i == prefix.size() || (i < name.size() && name[i] != '-') || process_alive(pid)) continue;
+    std::error_code ignored;
+    fs::remove_all(it->path(), ignored);
+  }
+}
+
+StagedOutputs::~StagedOutputs() {
+  for (const auto& [temp, target] : staged_) {
+    std::error_code ignored;
+    fs::remove(temp, ignored);
+  }
+}
+
+void StagedOutputs::stage(const std::string& path, const std::string& bytes) {
+  check_output_path(path);
+  const fs::path folder = folder_of(path);
+  const std::string name = fs::path(path).filename().string();
+  // Hidden, unique, clearly a partial file of PriMo's, and ending in the real extension; the
+  // name part is shortened so that the temporary name stays within the file system's limit.
+  const std::string prefix = "." + name.substr(0, 100) + ".primo-partial-";
+  remove_stale_partials(folder.string(), prefix);
+  static std::atomic<unsigned> counter{0};
+  const std::string temp = (folder / (prefix + std::to_string(::getpid()) + "-" +
+                                      std::to_string(counter++) + extension_of(path)))
+                               .string();
+  const int error = write_whole_file(temp, bytes);
+  if (error != 0) {
+    std::error_code ignored;
+    fs::remove(temp, ignored);
+    throw Error(path + ": cannot save: " + std::strerror(error) + " (nothing was written)");
+  }
+  staged_.emplace_back(temp, path);
+}
+
+void StagedOutputs::stage_mesh(const std::string& path, const Mesh& mesh) {
+  stage(path, mesh_file_bytes(mesh, path));
+}
+
+void StagedOutputs::commit() {
+  for (size_t i = 0; i < staged_.size(); ++i) {
+    const auto& [temp, target] = staged_[i];
+    if (std::rename(temp.c_str(), target.c_str()) != 0) {
+      const int error = errno;
+      std::string done;
+      for (size_t j = 0; j < i; ++j) done += (done.empty() ? "" : ", ") + staged_[j].second;
+      throw Error(target + ": cannot save: cannot move the temporary file into place: " +
+                  std::strerror(error) + (done.empty() ? "" : " (already written: " + done + ")"));
+    }
+  }
+  staged_.clear();
 }
 
 void write_text_atomically(const std::string& path, const std::string& text) {
-  const fs::path target = fs::absolute(fs::path(path));
-  if (!fs::is_directory(target.parent_path()))
-    throw Error(path + ": the folder " + target.parent_path().string() + " does not exist");
-  const fs::path temp = target.parent_path() /
-                        ("." + target.filename().string() + ".tmp-" + std::to_string(::getpid()));
-  {
-    std::ofstream out(temp, std::ios::binary | std::ios::trunc);
-    out << text;
-    out.flush();
-    if (!out) {
-      std::error_code ignored;
-      fs::remove(temp, ignored);
-      throw Error(path + ": cannot write the file");
-    }
-  }
-  std::error_code ec;
-  fs::rename(temp, target, ec);
-  if (ec) {
-    fs::remove(temp, ec);
-    throw Error(path + ": cannot write the file");
-  }
+  StagedOutputs out;
+  out.stage(path, text);
+  out.commit();
 }
 
 }  // namespace primo

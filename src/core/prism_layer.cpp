@@ -71,13 +71,21 @@ PrismLayer build_prism_layer(const Mesh& mesh, const PrismParameters& params) {
     for (auto v : f.vertices()) {
       const Vec3 blended = (1.0 - beta) * vertex_normal[v.idx()] + beta * geometry.normal[i];
       const double len = blended.norm();
-      if (!(len > 0.0) || !std::isfinite(len))
+      if (!std::isfinite(len))
+        throw Error("face " + std::to_string(i) + ", vertex " + std::to_string(v.idx()) +
+                    ": the blended extrusion direction is not finite (normal_blend " +
+                    std::to_string(beta) + " is too large)");
+      if (!(len > 0.0))
         throw Error("face " + std::to_string(i) + ", vertex " + std::to_string(v.idx()) +
                     ": the blended extrusion direction has zero length (normal_blend " +
                     std::to_string(beta) + ")");
       layer.corner_vertex.push_back(v.idx());
       layer.corner_point.push_back(c + width * (mesh.point(v) - c));
       layer.corner_offset.push_back(vertex_height[v.idx()] / len * blended);
+      // Products of finite settings can still overflow (a height or width of 1e300).
+      if (!layer.corner_point.back().allFinite() || !layer.corner_offset.back().allFinite())
+        throw Error("face " + std::to_string(i) + ", vertex " + std::to_string(v.idx()) +
+                    ": the prism corner is not finite (prism height or width too large)");
     }
     layer.corner_begin.push_back(int(layer.corner_vertex.size()));
   }

@@ -18,6 +18,7 @@
 #include <nlohmann/json.hpp>
 
 #include "primo/error.h"
+#include "primo/json_limits.h"
 
 namespace primo {
 namespace {
@@ -127,6 +128,7 @@ Json parse_json_text(const std::string& text, const std::string& label) {
     return true;
   };
 
+  check_json_depth(text, label);
   Json root;
   try {
     root = Json::parse(text, track, /*allow_exceptions=*/true, /*ignore_comments=*/false);
@@ -200,6 +202,10 @@ class ScenarioReader {
     if (!value.is_number()) fail(path, "expected a number");
     const double x = value.get<double>();
     if (!std::isfinite(x)) fail(path, "expected a finite number");
+    // A stiffness, height or translation of 1e308 is finite but overflows the energy: the
+    // solve would "converge" at once without solving (docs/scenario-format.md, "Ranges").
+    if (std::abs(x) > kMaxScenarioMagnitude)
+      fail(path, "must be between -1e15 and 1e15, got " + format_number(x));
     return x;
   }
 

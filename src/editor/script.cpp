@@ -1,6 +1,7 @@
 #include "script.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iomanip>
@@ -12,11 +13,26 @@
 namespace primo::editor {
 namespace {
 
+// A word of the script for a message: printable ASCII, anything else as \xNN.
+std::string shown(const std::string& s) {
+  std::string out = "'";
+  for (unsigned char c : s.substr(0, 40)) {
+    if (c >= 0x20 && c < 0x7f) {
+      out += char(c);
+    } else {
+      char buffer[8];
+      std::snprintf(buffer, sizeof buffer, "\\x%02X", c);
+      out += buffer;
+    }
+  }
+  return out + (s.size() > 40 ? "...'" : "'");
+}
+
 int parse_button(const std::string& name) {
   if (name == "left") return GLFW_MOUSE_BUTTON_LEFT;
   if (name == "right") return GLFW_MOUSE_BUTTON_RIGHT;
   if (name == "middle") return GLFW_MOUSE_BUTTON_MIDDLE;
-  throw std::invalid_argument("unknown button '" + name + "' (left, right or middle)");
+  throw std::invalid_argument("unknown button " + shown(name) + " (left, right or middle)");
 }
 
 double parse_number(const std::string& s) {
@@ -27,7 +43,18 @@ double parse_number(const std::string& s) {
   } catch (const std::exception&) {
     used = 0;
   }
-  if (used != s.size()) throw std::invalid_argument("expected a number, got '" + s + "'");
+  if (used != s.size()) throw std::invalid_argument("expected a number, got " + shown(s));
+  // stod reads "nan" and "inf": a wait or a move that never ends.
+  if (!std::isfinite(v)) throw std::invalid_argument("expected a finite number, got " + shown(s));
+  return v;
+}
+
+// A duration: wait, wait-settled, wait-file and move ... over. At most a day, so that a script
+// always ends.
+double parse_seconds(const std::string& s) {
+  const double v = parse_number(s);
+  if (v < 0.0 || v > 86400.0)
+    throw std::invalid_argument("expected seconds from 0 to 86400, got " + shown(s));
   return v;
 }
 
@@ -53,17 +80,17 @@ ScriptCommand parse_line(const std::string& line) {
     all_args();
     if (args.size() != 1) throw std::invalid_argument("wait takes SECONDS");
     c.kind = K::Wait;
-    c.seconds = parse_number(args[0]);
+    c.seconds = parse_seconds(args[0]);
   } else if (word == "wait-settled") {
     all_args();
     if (args.size() > 1) throw std::invalid_argument("wait-settled takes at most a TIMEOUT");
     c.kind = K::WaitSettled;
-    c.seconds = args.empty() ? 60.0 : parse_number(args[0]);
+    c.seconds = args.empty() ? 60.0 : parse_seconds(args[0]);
   } else if (word == "move" || word == "report") {
     all_args();
     c.kind = word == "move" ? K::Move : K::Report;
     if (c.kind == K::Move && args.size() >= 2 && args[args.size() - 2] == "over") {
-      c.seconds = parse_number(args.back());
+      c.seconds = parse_seconds(args.back());
       args.resize(args.size() - 2);
     }
     size_t i = 0;
@@ -127,13 +154,13 @@ ScriptCommand parse_line(const std::string& line) {
     if (args.empty() || args.size() > 2) throw std::invalid_argument("wait-file takes PATH [TIMEOUT]");
     c.kind = K::WaitFile;
     c.text = args[0];
-    c.seconds = args.size() == 2 ? parse_number(args[1]) : 60.0;
+    c.seconds = args.size() == 2 ? parse_seconds(args[1]) : 60.0;
   } else if (word == "quit") {
     all_args();
     if (!args.empty()) throw std::invalid_argument("quit takes no argument");
     c.kind = K::Quit;
   } else {
-    throw std::invalid_argument("unknown command '" + word + "'");
+    throw std::invalid_argument("unknown command " + shown(word));
   }
   return c;
 }

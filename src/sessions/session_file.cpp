@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "primo/error.h"
+#include "primo/json_limits.h"
 #include "primo/output_files.h"
 
 namespace primo {
@@ -47,6 +48,7 @@ double number(const json& j, const std::string& path) {
   if (!j.is_number()) fail(path, "expected a number");
   const double v = j.get<double>();
   if (!std::isfinite(v)) fail(path, "expected a finite number");
+  if (std::abs(v) > kMaxScenarioMagnitude) fail(path, "must be between -1e15 and 1e15");
   return v;
 }
 
@@ -193,12 +195,21 @@ void parse_face_values(const json& j, const std::string& path, std::vector<int>&
     if (values[i] <= 0.0) fail(at(path, "values[" + std::to_string(i) + "]"), "must be positive");
 }
 
-// Faces go into arrays of unknown size here; apply_event checks them against the mesh.
-FaceFactors sparse_to_array(const std::vector<int>& faces, const std::vector<double>& values) {
+// Faces go into arrays of unknown size here; validate_session checks them against the mesh.
+// The array reaches the largest face listed, so that face is checked against kMaxSessionFaces
+// first: [2147483647] overflowed and segfaulted, [2000000000] allocated 16 GB.
+FaceFactors sparse_to_array(const std::vector<int>& faces, const std::vector<double>& values,
+                            const std::string& path) {
   if (faces.empty()) return nullptr;
-  int n = 0;
-  for (int f : faces) n = std::max(n, f + 1);
-  auto a = std::make_shared<std::vector<double>>(size_t(n), 1.0);
+  size_t n = 0;
+  for (size_t i = 0; i < faces.size(); ++i) {
+    if (faces[i] >= kMaxSessionFaces)
+      fail(path + ".faces[" + std::to_string(i) + "]",
+           "face " + std::to_string(faces[i]) + " is beyond the largest mesh a session may have (" +
+               std::to_string(kMaxSessionFaces) + " faces)");
+    n = std::max(n, size_t(faces[i]) + 1);
+  }
+  auto a = std::make_shared<std::vector<double>>(n, 1.0);
   for (size_t i = 0; i < faces.size(); ++i)
     if (faces[i] >= 0) (*a)[size_t(faces[i])] = values[i];
   return a;
@@ -244,6 +255,9 @@ SessionEvent parse_event(const json& j, SessionEvent::Type type) {
   if (e.t < 0.0) fail("t", "must not be negative");
   e.frame = integer(member(j, "", "frame"), "frame");
   if (e.frame < 0) fail("frame", "must not be negative");
+  if (e.frame > kMaxSessionFrame)
+    fail("frame", std::to_string(e.frame) + " is beyond the last frame a session may have (" +
+                      std::to_string(kMaxSessionFrame) + ", 46 hours at 60 frames a second)");
   switch (type) {
     case SessionEvent::Type::Handles:
       check_object(j, "", {"t", "frame", "type", "handles"});
@@ -303,6 +317,7 @@ Session parse_session(const std::string& text, const std::string& source) {
   auto where_event = [&](int i, const std::string& type) {
     return "events[" + std::to_string(i) + "]" + (type.empty() ? "" : " (" + type + ")");
   };
+  check_json_depth(text, src);
   json root;
   try {
     root = json::parse(text, [&](int depth, json::parse_event_t ev, json& parsed) {
@@ -325,6 +340,13 @@ Session parse_session(const std::string& text, const std::string& source) {
     std::string where = top_key == "events" && event_index >= 0 ? where_event(event_index, event_type) + ": " : "";
     throw Error(src + ": " + where + (truncated ? "the file ends early (truncated?)" : "malformed JSON") +
                 " at line " + std::to_string(line) + ", column " + std::to_string(col));
+  } catch (const json::exception& e) {
+    // A number too large for a double (1e999) is json's out_of_range.406, without a position.
+    std::string what = e.what();
+    if (const size_t b = what.find("] "); what.rfind("[json.exception.", 0) == 0 && b != std::string::npos)
+      what = what.substr(b + 2);
+    std::string where = top_key == "events" && event_index >= 0 ? where_event(event_index, event_type) + ": " : "";
+    throw Error(src + ": " + where + "malformed JSON: " + what);
   }
 
   Session s;
@@ -374,7 +396,7 @@ Session parse_session(const std::string& text, const std::string& source) {
       parse_face_values(init[layer], p, faces, values);
       for (size_t i = 0; i < faces.size(); ++i)
         if (faces[i] < 0) fail(p + ".faces[" + std::to_string(i) + "]", "negative face index");
-      (layer[0] == 'h' ? s.initial.height_factor : s.initial.width_factor) = sparse_to_array(faces, values);
+      (layer[0] == 'h' ? s.initial.height_factor : s.initial.width_factor) = sparse_to_array(faces, values, p);
     }
   } catch (const Error& e) {
     throw Error(src + ": " + e.what());

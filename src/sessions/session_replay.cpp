@@ -48,7 +48,18 @@ ReplayResult replay_session(const Session& session, const Mesh& mesh, const Repl
   bool converged = false;
   size_t next = 0;
   const int frames = session.frames();
+  // Iterations since the state last changed: a stretch of frames without events (a session may
+  // be idle for 10 million frames) is solved for at most solver.max_iterations iterations, as a
+  // settle would be; the frames after that, and every frame once converged, change nothing and
+  // are skipped unless frames are exported.
+  long idle_iterations = 0;
+  const bool exporting = opt.every > 0 && opt.on_frame;
   for (int frame = 0; frame < std::max(frames, 1); ++frame) {
+    if ((converged || idle_iterations >= session.solver.max_iterations) && !exporting) {
+      const int next_frame = next < session.events.size() ? session.events[next].frame : frames;
+      if (next_frame >= frames) break;
+      frame = std::max(frame, next_frame);
+    }
     const SessionState before = state;
     while (next < session.events.size() && session.events[next].frame == frame)
       apply_event(state, session.events[next++], n_faces);
@@ -60,9 +71,11 @@ ReplayResult replay_session(const Session& session, const Mesh& mesh, const Repl
       set_targets(*d, state);
       converged = false;
     }
-    if (!converged && opt.iterations_per_frame > 0) {
+    if (!(before == state)) idle_iterations = 0;
+    if (!converged && idle_iterations < session.solver.max_iterations && opt.iterations_per_frame > 0) {
       const SolveReport rep = d->solve(options_for(session.solver, n_faces, opt.iterations_per_frame));
       r.iterations += rep.iterations;
+      idle_iterations += std::max(rep.iterations, 1);
       converged = rep.converged && rep.stop_reason == "tolerance";
     }
     if (opt.every > 0 && frame % opt.every == 0 && opt.on_frame) opt.on_frame(frame, *d);
