@@ -16,8 +16,8 @@ measure "generate 2M quads" "$primo" generate cylinder --radius 0.25 --length 2 
 ls -l "$work/big.obj" | awk '{print "big.obj: " $5 " bytes"}'
 cat >"$work/s.json" <<JSON
 {"format": "primo-scenario/1", "mesh": "big.obj",
- "handles": [{"select": {"box": {"min": [-1, -1.1, -1], "max": [1, -0.99, 1]}}, "fix": "all"},
-             {"select": {"box": {"min": [-1, 0.99, -1], "max": [1, 1.1, 1]}}, "fix": "all",
+ "handles": [{"select": {"box": {"min": [-1, -0.1, -1], "max": [1, 0.01, 1]}}, "fix": "all"},
+             {"select": {"box": {"min": [-1, 1.99, -1], "max": [1, 2.1, 1]}}, "fix": "all",
               "transform": {"translate": [0.2, 0, 0]}}],
  "solver": {"method": "hierarchical", "max_iterations": 2}}
 JSON
