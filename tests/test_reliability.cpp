@@ -124,7 +124,8 @@ TEST(Reliability, AHugeMoveIsFollowedInABoundedPath) {
 
 TEST(Reliability, NonFiniteTargetsAreRefusedWhereTheyEnter) {
   const Mesh grid = make_grid(1.0, 1.0, 4, 4, FaceShape::Quads);
-  Deformer d(grid, PrismParameters{}, {{"a", {0}, Fix::All, {}}, {"b", {15}, Fix::All, {}}}, {{"f", {5}, Vec3::Zero(), 1.0}});
+  Deformer d(grid, PrismParameters{}, {{"a", {0}, Fix::All, {}}, {"b", {15}, Fix::All, {}}},
+             {{"f", {5}, Vec3::Zero(), 1.0}});
   RigidTransform nan;
   nan.translation.x() = std::nan("");
   EXPECT_THROW(d.set_handle_transform(1, nan), Error);
@@ -150,22 +151,25 @@ std::string load_error(const std::string& obj) {
 
 // Solves a bend with the first face fixed and the last turned 60 degrees about x.
 SolveReport bend(const Mesh& mesh) {
-  RigidTransform turn = make_rigid_transform(Vec3(0, 0, 0.1), Vec3(1, 0, 0), 60.0,
-                                             Vec3(0.5, 0.5, 0));
-  Deformer d(mesh, PrismParameters{}, {{"a", {0}, Fix::All, {}},
-                                       {"b", {int(mesh.n_faces()) - 1}, Fix::All, turn}});
+  RigidTransform turn =
+      make_rigid_transform(Vec3(0, 0, 0.1), Vec3(1, 0, 0), 60.0, Vec3(0.5, 0.5, 0));
+  Deformer d(mesh, PrismParameters{},
+             {{"a", {0}, Fix::All, {}}, {"b", {int(mesh.n_faces()) - 1}, Fix::All, turn}});
   const SolveReport r = d.solve(SolveOptions{});
   expect_finite_state(d, "bend");
   expect_monotone(r, "bend");
   return r;
 }
 
-Mesh from_obj(const std::string& obj) { return mesh_from_soup(parse_mesh_bytes(obj, "d.obj"), "d.obj"); }
+Mesh from_obj(const std::string& obj) {
+  return mesh_from_soup(parse_mesh_bytes(obj, "d.obj"), "d.obj");
+}
 
 // A 3 x 3 triangle grid with its middle vertex (5) moved: to (0.5, 0.0001) its faces become
 // needles and caps.
 std::string grid_with_middle(const std::string& middle) {
-  return "v 0 0 0\nv 0.5 0 0\nv 1 0 0\nv 0 0.5 0\nv " + middle + "\nv 1 0.5 0\nv 0 1 0\nv 0.5 1 0\nv 1 1 0\n"
+  return "v 0 0 0\nv 0.5 0 0\nv 1 0 0\nv 0 0.5 0\nv " + middle +
+         "\nv 1 0.5 0\nv 0 1 0\nv 0.5 1 0\nv 1 1 0\n"
          "f 1 2 5\nf 1 5 4\nf 2 3 6\nf 2 6 5\nf 4 5 8\nf 4 8 7\nf 5 6 9\nf 5 9 8\n";
 }
 
@@ -175,35 +179,54 @@ TEST(DegenerateGeometry, NeedlesAndCapsSolve) {
   const SolveReport cap = bend(from_obj(grid_with_middle("0.5 0.49999 0")));  // near-flat caps
   EXPECT_TRUE(cap.converged) << cap.stop_reason;
   // A sliver 1e-9 thin on a 1-long edge: still a face with a normal.
-  EXPECT_TRUE(bend(from_obj("v 0 0 0\nv 1 0 0\nv 0.5 1e-9 0\nv 0.5 -1 0\nf 1 3 2\nf 1 2 4\n")).converged);
+  EXPECT_TRUE(
+      bend(from_obj("v 0 0 0\nv 1 0 0\nv 0.5 1e-9 0\nv 0.5 -1 0\nf 1 3 2\nf 1 2 4\n")).converged);
 }
 
 TEST(DegenerateGeometry, ZeroAreaAndRepeatedIndicesAreErrorsNamingTheFace) {
-  EXPECT_NE(std::string::npos, load_error(grid_with_middle("0.5 0 0")).find("d.obj: face 0 (vertices 0, 1, 4): zero area"));
-  EXPECT_NE(std::string::npos, load_error("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 2 3\n").find("face 0 (vertices 0, 1, 1, 2): vertex 1 appears more than once"));
+  EXPECT_NE(
+      std::string::npos,
+      load_error(grid_with_middle("0.5 0 0")).find("d.obj: face 0 (vertices 0, 1, 4): zero area"));
+  EXPECT_NE(std::string::npos,
+            load_error("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 2 3\n")
+                .find("face 0 (vertices 0, 1, 1, 2): vertex 1 appears more than once"));
   // Duplicate vertices (two at one position) in one face: zero area.
-  EXPECT_NE(std::string::npos, load_error("v 0 0 0\nv 1 0 0\nv 1 0 0\nf 1 2 3\n").find("face 0 (vertices 0, 1, 2): zero area"));
+  EXPECT_NE(std::string::npos, load_error("v 0 0 0\nv 1 0 0\nv 1 0 0\nf 1 2 3\n")
+                                   .find("face 0 (vertices 0, 1, 2): zero area"));
 }
 
 TEST(DegenerateGeometry, DuplicateIsolatedOneFaceDisconnectedAndBoundariesSolve) {
   // Duplicate vertices in different faces: a cut along the seam, two boundaries that touch.
-  EXPECT_TRUE(bend(from_obj("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 1 0 0\nv 1 1 0\nv 2 0 0\nv 2 1 0\n"
-                            "f 1 2 3 4\nf 5 7 8 6\n")).converged);
+  EXPECT_TRUE(
+      bend(from_obj("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 1 0 0\nv 1 1 0\nv 2 0 0\nv 2 1 0\n"
+                    "f 1 2 3 4\nf 5 7 8 6\n"))
+          .converged);
   // Isolated vertices, one far away: they stay where they are.
-  const Mesh isolated = from_obj("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 5 5 5\nv 1e7 0 0\nv 2 0 0\nv 2 1 0\nf 1 2 3 4\nf 2 7 8 3\n");
+  const Mesh isolated = from_obj(
+      "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 5 5 5\nv 1e7 0 0\nv 2 0 0\nv 2 1 0\nf 1 2 3 4\nf 2 7 "
+      "8 3\n");
   EXPECT_TRUE(bend(isolated).converged);
   // One face: a handle and nothing else.
   const Mesh one = from_obj("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
-  Deformer d(one, PrismParameters{}, {{"a", {0}, Fix::All, make_rigid_transform(Vec3(1, 2, 3), Vec3(0, 0, 1), 90, Vec3::Zero())}});
+  Deformer d(
+      one, PrismParameters{},
+      {{"a", {0}, Fix::All, make_rigid_transform(Vec3(1, 2, 3), Vec3(0, 0, 1), 90, Vec3::Zero())}});
   EXPECT_TRUE(d.solve(SolveOptions{}).converged);
   expect_finite_state(d, "one face");
   // Two pieces, the second without any handle: it stays at rest.
-  const Mesh pieces = from_obj("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 3 0 0\nv 4 0 0\nv 4 1 0\nv 3 1 0\nv 2 0 0\nv 2 1 0\n"
-                               "f 1 2 3 4\nf 2 9 10 3\nf 5 6 7 8\n");
-  Deformer p(pieces, PrismParameters{}, {{"a", {0}, Fix::All, {}}, {"b", {1}, Fix::All, make_rigid_transform(Vec3(0, 0, 0.3), Vec3(0, 1, 0), 30, Vec3(1.5, 0.5, 0))}});
+  const Mesh pieces = from_obj(
+      "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 3 0 0\nv 4 0 0\nv 4 1 0\nv 3 1 0\nv 2 0 0\nv 2 1 0\n"
+      "f 1 2 3 4\nf 2 9 10 3\nf 5 6 7 8\n");
+  Deformer p(pieces, PrismParameters{},
+             {{"a", {0}, Fix::All, {}},
+              {"b",
+               {1},
+               Fix::All,
+               make_rigid_transform(Vec3(0, 0, 0.3), Vec3(0, 1, 0), 30, Vec3(1.5, 0.5, 0))}});
   EXPECT_TRUE(p.solve(SolveOptions{}).converged);
   const std::vector<Vec3> after = p.vertex_positions();
-  for (int v : {4, 5, 6, 7}) EXPECT_LT((after[size_t(v)] - pieces.point(Mesh::VertexHandle(v))).norm(), 1e-9);
+  for (int v : {4, 5, 6, 7})
+    EXPECT_LT((after[size_t(v)] - pieces.point(Mesh::VertexHandle(v))).norm(), 1e-9);
   // Boundaries everywhere: an open cylinder.
   EXPECT_TRUE(bend(make_cylinder(0.25, 1.0, 8, 4, FaceShape::Quads)).converged);
 }
@@ -220,14 +243,18 @@ TEST(Determinism, DeformAndReplayTwiceGiveTheSameBytes) {
                 {"select": {"box": {"min": [-1, 0.9, -1], "max": [1, 2, 1]}}, "fix": "all",
                  "transform": {"axis": [0, 0, 1], "angle_deg": 90, "translate": [0.3, 0, 0]}}]})");
   for (const std::string run : {"1", "2"}) {
-    ASSERT_EQ(0, test::run_primo("deform " + dir + "/s.json -o " + dir + "/d" + run + ".obj").exit_code);
+    ASSERT_EQ(
+        0, test::run_primo("deform " + dir + "/s.json -o " + dir + "/d" + run + ".obj").exit_code);
     ASSERT_EQ(0, test::run_primo("replay " + dir + "/pose.session.json -o " + dir + "/r" + run +
-                                 ".obj --frames " + dir + "/frames" + run + " --every 5").exit_code);
+                                 ".obj --frames " + dir + "/frames" + run + " --every 5")
+                     .exit_code);
   }
   EXPECT_EQ(test::read_text(dir + "/d1.obj"), test::read_text(dir + "/d2.obj"));
   EXPECT_EQ(test::read_text(dir + "/r1.obj"), test::read_text(dir + "/r2.obj"));
   for (const char* frame : {"frame_000000.obj", "frame_000005.obj", "frame_000010.obj"})
-    EXPECT_EQ(test::read_text(dir + "/frames1/" + frame), test::read_text(dir + "/frames2/" + frame)) << frame;
+    EXPECT_EQ(test::read_text(dir + "/frames1/" + frame),
+              test::read_text(dir + "/frames2/" + frame))
+        << frame;
   EXPECT_FALSE(test::read_text(dir + "/frames1/frame_000010.obj").empty());
 }
 
