@@ -24,7 +24,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     const primo::Scenario scenario = primo::parse_scenario(text, "fuzz.json");
     const primo::ResolvedScenario resolved = primo::resolve_scenario(scenario, mesh);
     primo::Deformer deformer = primo::make_scenario_deformer(mesh, resolved);
-    primo::SolveOptions options = primo::scenario_solve_options(resolved.solver, mesh.n_faces(), "");
+    primo::SolveOptions options =
+        primo::scenario_solve_options(resolved.solver, mesh.n_faces(), "");
     options.max_iterations = std::min(options.max_iterations, 3);
     options.max_hierarchical_cycles = 3;
     options.path.max_iterations = 6;  // a few sub-steps of a large edit, not all of them

@@ -34,13 +34,14 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   }
   size_t bound = 10;
   for (const auto& c : commands)
-    if (c.kind != primo::editor::ScriptCommand::Kind::Report &&   // prints: not played
-        c.kind != primo::editor::ScriptCommand::Kind::WaitFile)   // touches the file system
+    if (c.kind != primo::editor::ScriptCommand::Kind::Report &&  // prints: not played
+        c.kind != primo::editor::ScriptCommand::Kind::WaitFile)  // touches the file system
       bound += c.text.size() + 200;
-  commands.erase(std::remove_if(commands.begin(), commands.end(), [](const auto& c) {
-                   return c.kind == primo::editor::ScriptCommand::Kind::Report ||
-                          c.kind == primo::editor::ScriptCommand::Kind::WaitFile;
-                 }),
+  commands.erase(std::remove_if(commands.begin(), commands.end(),
+                                [](const auto& c) {
+                                  return c.kind == primo::editor::ScriptCommand::Kind::Report ||
+                                         c.kind == primo::editor::ScriptCommand::Kind::WaitFile;
+                                }),
                  commands.end());
   primo::editor::ScriptPlayer player(std::move(commands));
   NullHost host;

@@ -19,6 +19,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   } catch (const primo::Error&) {
     return 0;
   }
-  primo::parse_session(primo::session_to_json(session, ""), "written.session.json");  // must not throw
+  primo::parse_session(primo::session_to_json(session, ""),
+                       "written.session.json");  // must not throw
   return 0;
 }

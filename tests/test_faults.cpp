@@ -4,9 +4,9 @@
 // case the user's existing files stay as they were, and no partial file is left under a final
 // name. The tests run as root here, where chmod does not stop writes: read-only is /proc.
 
+#include <fcntl.h>
 #include <gtest/gtest.h>
 #include <signal.h>
-#include <fcntl.h>
 #include <sys/resource.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <chrono>
 #include <csignal>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -46,7 +47,8 @@ const char* kScenario = R"({"format": "primo-scenario/1", "mesh": "cube.obj",
 
 std::vector<std::string> entries(const std::string& folder) {
   std::vector<std::string> names;
-  for (const auto& e : fs::directory_iterator(folder)) names.push_back(e.path().filename().string());
+  for (const auto& e : fs::directory_iterator(folder))
+    names.push_back(e.path().filename().string());
   std::sort(names.begin(), names.end());
   return names;
 }
@@ -94,7 +96,9 @@ class Faults : public ::testing::Test {
     write_text(dir + "/s.json", kScenario);
     write_text(dir + "/existing.obj", "keep me");
   }
-  CommandResult deform(const std::string& rest) { return run_primo("deform " + dir + "/s.json " + rest); }
+  CommandResult deform(const std::string& rest) {
+    return run_primo("deform " + dir + "/s.json " + rest);
+  }
   void expect_refused(const CommandResult& r, const std::string& part) {
     EXPECT_NE(0, r.exit_code);
     EXPECT_EQ(1, lines(r.err)) << r.err;
@@ -102,7 +106,8 @@ class Faults : public ::testing::Test {
     EXPECT_EQ("keep me", read_text(dir + "/existing.obj"));
     EXPECT_EQ(kCube, read_text(dir + "/cube.obj"));
     EXPECT_EQ(kScenario, read_text(dir + "/s.json"));
-    EXPECT_EQ((std::vector<std::string>{"cube.obj", "existing.obj", "s.json"}), entries(dir)) << r.err;
+    EXPECT_EQ((std::vector<std::string>{"cube.obj", "existing.obj", "s.json"}), entries(dir))
+        << r.err;
   }
   std::string dir;
 };
@@ -112,15 +117,18 @@ class Faults : public ::testing::Test {
 // The stats could not be written after the mesh was: deform used to save over existing.obj and
 // then delete it.
 TEST_F(Faults, UnwritableStatsKeepTheExistingOutput) {
-  expect_refused(deform("-o " + dir + "/existing.obj --stats " + dir + "/missing/st.json"), "does not exist");
+  expect_refused(deform("-o " + dir + "/existing.obj --stats " + dir + "/missing/st.json"),
+                 "does not exist");
   // /proc exists but nothing can be created in it, not even by root: found only when writing.
-  expect_refused(deform("-o " + dir + "/existing.obj --stats /proc/st.json"), "/proc/st.json: cannot save");
+  expect_refused(deform("-o " + dir + "/existing.obj --stats /proc/st.json"),
+                 "/proc/st.json: cannot save");
 }
 
 TEST_F(Faults, OutputThatIsAnInputOrAnotherOutput) {
   const std::string o = "-o " + dir + "/existing.obj";
   expect_refused(deform(o + " --stats " + dir + "/existing.obj"), "--stats is the same file as -o");
-  expect_refused(deform(o + " --stats " + dir + "/s.json"), "--stats is the same file as the scenario");
+  expect_refused(deform(o + " --stats " + dir + "/s.json"),
+                 "--stats is the same file as the scenario");
   expect_refused(deform("-o " + dir + "/cube.obj"), "-o is the same file as the scenario's mesh");
   expect_refused(deform("-o " + dir + "/../" + fs::path(dir).filename().string() + "/./cube.obj"),
                  "same file");
@@ -139,7 +147,8 @@ TEST_F(Faults, FullDiskDeviceAndReadOnlyFolders) {
   ASSERT_EQ(0, ::stat("/dev/full", &st));
   EXPECT_TRUE(S_ISCHR(st.st_mode));
   expect_refused(deform("-o /proc/out.obj"), "/proc/out.obj: cannot save");
-  expect_refused(deform("-o " + dir + "/cube.obj/out.obj"), "does not exist");  // a file, not a folder
+  expect_refused(deform("-o " + dir + "/cube.obj/out.obj"),
+                 "does not exist");  // a file, not a folder
   expect_refused(deform("-o " + dir), "unknown output format");
 }
 
@@ -174,13 +183,15 @@ TEST_F(Faults, SigkillDuringALargeWrite) {
   // the partial is clearly named, and the next write to the target removes it.
   const pid_t pid = start_primo({"generate", "cylinder", "--segments", "1000", "--bands", "1000",
                                  "-o", dir + "/existing.obj"});
-  const bool caught = wait_for([&] { return has_entry_containing(dir, ".existing.obj.primo-partial-"); }, 20);
+  const bool caught =
+      wait_for([&] { return has_entry_containing(dir, ".existing.obj.primo-partial-"); }, 20);
   ::kill(pid, SIGKILL);
   int status = 0;
   waitpid(pid, &status, 0);
   if (!caught || !WIFSIGNALED(status)) GTEST_SKIP() << "the write ended before it could be killed";
   EXPECT_EQ("keep me", read_text(dir + "/existing.obj"));
-  EXPECT_TRUE(has_entry_containing(dir, ".existing.obj.primo-partial-" + std::to_string(pid) + "-"));
+  EXPECT_TRUE(
+      has_entry_containing(dir, ".existing.obj.primo-partial-" + std::to_string(pid) + "-"));
   ASSERT_EQ(0, deform("-o " + dir + "/existing.obj").exit_code);
   EXPECT_EQ((std::vector<std::string>{"cube.obj", "existing.obj", "s.json"}), entries(dir));
   EXPECT_EQ(8u, primo::load_mesh(dir + "/existing.obj").n_vertices());
@@ -197,37 +208,42 @@ TEST_F(Faults, SigkillDuringAReplayFramesExport) {
     t.type = primo::SessionEvent::Type::Targets;
     t.frame = e.frame + k;
     t.t = e.t + k / 60.0;
-    t.poses.push_back({1, {primo::Vec3(0.0, 0.0, 0.001 * (k % 100)), Eigen::Quaterniond::Identity()}});
+    t.poses.push_back(
+        {1, {primo::Vec3(0.0, 0.0, 0.001 * (k % 100)), Eigen::Quaterniond::Identity()}});
     s.events.push_back(t);
   }
   primo::save_session(s, dir + "/long.session.json");
   fs::create_directory(dir + "/frames");
   const pid_t pid = start_primo({"replay", dir + "/long.session.json", "-o", dir + "/existing.obj",
                                  "--frames", dir + "/frames"});
-  const bool caught = wait_for([&] { return has_entry_containing(dir + "/frames", ".primo-replay-"); }, 30);
+  const bool caught =
+      wait_for([&] { return has_entry_containing(dir + "/frames", ".primo-replay-"); }, 30);
   std::this_thread::sleep_for(std::chrono::milliseconds(50));
   ::kill(pid, SIGKILL);
   int status = 0;
   waitpid(pid, &status, 0);
   if (!caught || !WIFSIGNALED(status)) GTEST_SKIP() << "the replay ended before it could be killed";
   EXPECT_EQ("keep me", read_text(dir + "/existing.obj"));
-  EXPECT_EQ((std::vector<std::string>{".primo-replay-" + std::to_string(pid)}), entries(dir + "/frames"));
+  EXPECT_EQ((std::vector<std::string>{".primo-replay-" + std::to_string(pid)}),
+            entries(dir + "/frames"));
   // The next replay into the folder removes what the killed one left.
   primo::save_session(r.session, dir + "/short.session.json");
-  ASSERT_EQ(0, run_primo("replay " + dir + "/short.session.json -o " + dir + "/short.obj --frames " +
-                         dir + "/frames --every 100").exit_code);
+  ASSERT_EQ(0, run_primo("replay " + dir + "/short.session.json -o " + dir +
+                         "/short.obj --frames " + dir + "/frames --every 100")
+                   .exit_code);
   EXPECT_EQ((std::vector<std::string>{"frame_000000.obj"}), entries(dir + "/frames"));
 }
 
 TEST_F(Faults, TwoProcessesWritingTheSameOutput) {
   ASSERT_EQ(0, deform("-o " + dir + "/alone.obj").exit_code);
-  const std::string cmd = std::string(PRIMO_EXECUTABLE) + " deform " + dir + "/s.json -o " + dir +
-                          "/existing.obj";
+  const std::string cmd =
+      std::string(PRIMO_EXECUTABLE) + " deform " + dir + "/s.json -o " + dir + "/existing.obj";
   for (int round = 0; round < 3; ++round) {
     ASSERT_EQ(0, std::system(("(" + cmd + " & " + cmd + " & wait) 2>/dev/null").c_str()));
     EXPECT_EQ(read_text(dir + "/alone.obj"), read_text(dir + "/existing.obj"));
   }
-  EXPECT_EQ((std::vector<std::string>{"alone.obj", "cube.obj", "existing.obj", "s.json"}), entries(dir));
+  EXPECT_EQ((std::vector<std::string>{"alone.obj", "cube.obj", "existing.obj", "s.json"}),
+            entries(dir));
 }
 
 TEST_F(Faults, ReplayWithUnwritableStatsKeepsTheExistingOutput) {
@@ -241,6 +257,40 @@ TEST_F(Faults, ReplayWithUnwritableStatsKeepsTheExistingOutput) {
     EXPECT_EQ(1, lines(c.err)) << c.err;
     EXPECT_EQ("keep me", read_text(dir + "/existing.obj")) << stats;
   }
-  const CommandResult same = run_primo("replay " + dir + "/pose.session.json -o " + dir + "/bar.obj");
-  EXPECT_NE(std::string::npos, same.err.find("-o is the same file as the session's mesh")) << same.err;
+  const CommandResult same =
+      run_primo("replay " + dir + "/pose.session.json -o " + dir + "/bar.obj");
+  EXPECT_NE(std::string::npos, same.err.find("-o is the same file as the session's mesh"))
+      << same.err;
+}
+
+TEST_F(Faults, ASessionOfAHundredThousandEvents) {
+  // 100,000 target events over 1,000 frames after the recorded bar session: read, checked and
+  // replayed in seconds, bitwise the same twice.
+  const primo::test::RecordedSession r = primo::test::record_bar_session(dir + "/bar.obj");
+  primo::save_mesh(r.mesh, dir + "/bar.obj");
+  primo::Session s = r.session;
+  const primo::SessionEvent last = s.events.back();
+  for (int k = 0; k < 100000; ++k) {
+    primo::SessionEvent t;
+    t.type = primo::SessionEvent::Type::Targets;
+    t.frame = last.frame + 1 + k / 100;
+    t.t = last.t + t.frame / 60.0;
+    t.poses.push_back(
+        {1, {primo::Vec3(0.0, 0.0, 1e-4 * (k % 1000)), Eigen::Quaterniond::Identity()}});
+    s.events.push_back(t);
+  }
+  primo::save_session(s, dir + "/many.session.json");
+  const auto start = std::chrono::steady_clock::now();
+  const CommandResult a = run_primo("replay " + dir + "/many.session.json -o " + dir +
+                                    "/a.obj --stats " + dir + "/a.json");
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  ASSERT_EQ(0, a.exit_code) << a.err;
+  EXPECT_LT(seconds, 60.0);
+  EXPECT_NE(std::string::npos,
+            read_text(dir + "/a.json").find("\"events\": " + std::to_string(s.events.size())));
+  ASSERT_EQ(0, run_primo("replay " + dir + "/many.session.json -o " + dir + "/b.obj").exit_code);
+  EXPECT_EQ(read_text(dir + "/a.obj"), read_text(dir + "/b.obj"));
+  std::printf("[ metric   ] 100,000-event session (%zu bytes) replayed in %.1f s\n",
+              read_text(dir + "/many.session.json").size(), seconds);
 }

@@ -4,11 +4,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <string>
 
-#include "script.h"
 #include "primo/deformer.h"
 #include "primo/error.h"
 #include "primo/mesh_generators.h"
@@ -16,6 +16,7 @@
 #include "primo/scenario.h"
 #include "primo/session.h"
 #include "primo/session_replay.h"
+#include "script.h"
 #include "session_support.h"
 #include "test_support.h"
 
@@ -68,8 +69,9 @@ TEST(HostileSessions, HugeInitialFactorFacesAreErrorsNotCrashes) {
   for (const std::string face : {"2147483647", "2000000000"}) {
     const std::string text = replaced(s.text, "\"height_factors\":{\"faces\":[]",
                                       "\"height_factors\":{\"faces\":[" + face + "]");
-    const std::string bad = replaced(text, "\"height_factors\":{\"faces\":[" + face + "],\"values\":[]",
-                                     "\"height_factors\":{\"faces\":[" + face + "],\"values\":[0.5]");
+    const std::string bad =
+        replaced(text, "\"height_factors\":{\"faces\":[" + face + "],\"values\":[]",
+                 "\"height_factors\":{\"faces\":[" + face + "],\"values\":[0.5]");
     const auto start = Clock::now();
     const std::string message = error_of([&] { parse_session(bad, "big.session.json"); });
     expect_contains(message, "big.session.json: initial.height_factors.faces[0]: face " + face +
@@ -122,22 +124,28 @@ TEST(HostileSessions, DeepNestingIsRefusedQuickly) {
 // --- scenarios ------------------------------------------------------------------------------
 
 std::string scenario_with(const std::string& handles, const std::string& rest = "") {
-  return R"({"format": "primo-scenario/1", "mesh": "m.obj", "handles": [)" + handles + "]" + rest + "}";
+  return R"({"format": "primo-scenario/1", "mesh": "m.obj", "handles": [)" + handles + "]" + rest +
+         "}";
 }
 
 TEST(HostileScenarios, HugeSettingsAreRejectedWhereTheyEnter) {
   const std::string fixed = R"({"select": {"faces": [0]}, "fix": "all"})";
   expect_contains(error_of([&] {
                     parse_scenario(scenario_with(fixed, R"(, "forces": [{"select": {"all": true},
-                      "target_offset": [0, 1, 0], "stiffness": 1e308}])"), "s.json");
+                      "target_offset": [0, 1, 0], "stiffness": 1e308}])"),
+                                   "s.json");
                   }),
                   "s.json: forces[0].stiffness: must be between -1e15 and 1e15");
-  expect_contains(error_of([&] { parse_scenario(scenario_with(fixed, R"(, "prisms": {"height": 1e308})"), "s.json"); }),
+  expect_contains(error_of([&] {
+                    parse_scenario(scenario_with(fixed, R"(, "prisms": {"height": 1e308})"),
+                                   "s.json");
+                  }),
                   "s.json: prisms.height: must be between");
   // A 1e308 axis used to overflow its norm and be called zero.
   expect_contains(error_of([&] {
                     parse_scenario(scenario_with(R"({"select": {"faces": [0]}, "fix": "all",
-                      "transform": {"axis": [1e308, 0, 0], "angle_deg": 90}})"), "s.json");
+                      "transform": {"axis": [1e308, 0, 0], "angle_deg": 90}})"),
+                                   "s.json");
                   }),
                   "s.json: handles[0].transform.axis[0]: must be between");
 }
@@ -190,21 +198,36 @@ TEST(HostileNumbers, EngineErrorsNameTheScenarioFile) {
   test::write_text(dir + "/fold.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0.5 1 0\nf 1 2 3\nf 2 1 4\n");
   test::write_text(dir + "/fold.json", R"({"format": "primo-scenario/1", "mesh": "fold.obj",
     "handles": [{"select": {"faces": [0]}, "fix": "all"}]})");
-  const test::CommandResult r = test::run_primo("deform " + dir + "/fold.json -o " + dir + "/out.obj");
+  const test::CommandResult r =
+      test::run_primo("deform " + dir + "/fold.json -o " + dir + "/out.obj");
   EXPECT_NE(0, r.exit_code);
   expect_contains(r.err, dir + "/fold.json: face ");
   expect_contains(r.err, "extrusion direction has zero length");
+}
+
+TEST(HostileNumbers, ControlBytesFromJsonStringsAreNotPrinted) {
+  const std::string dir = test::temp_dir();
+  test::write_text(dir + "/esc.json", R"({"format": "primo-scenario/1", "mesh": "m.obj",
+    "handles": [{"select": {"faces": [0]}, "fix": "\u001b[2J\nall"}]})");
+  const test::CommandResult r = test::run_primo("deform " + dir + "/esc.json -o " + dir + "/o.obj");
+  EXPECT_NE(0, r.exit_code);
+  expect_contains(r.err, "\\x1B[2J\\x0Aall");
+  EXPECT_EQ(1, std::count(r.err.begin(), r.err.end(), '\n')) << r.err;
+  EXPECT_EQ(std::string::npos, r.err.find('\x1b')) << r.err;
 }
 
 // --- editor scripts -------------------------------------------------------------------------
 
 TEST(HostileScripts, DurationsMustBeFiniteAndBounded) {
   using editor::parse_script;
-  expect_contains(error_of([] { parse_script("wait nan\n", "s.txt"); }), "s.txt:1: expected a finite number, got 'nan'");
-  expect_contains(error_of([] { parse_script("echo hi\nmove 10 10 over inf\n", "s.txt"); }), "s.txt:2: expected a finite");
+  expect_contains(error_of([] { parse_script("wait nan\n", "s.txt"); }),
+                  "s.txt:1: expected a finite number, got 'nan'");
+  expect_contains(error_of([] { parse_script("echo hi\nmove 10 10 over inf\n", "s.txt"); }),
+                  "s.txt:2: expected a finite");
   expect_contains(error_of([] { parse_script("wait -1\n", "s.txt"); }), "from 0 to 86400");
   expect_contains(error_of([] { parse_script("wait-settled 1e9\n", "s.txt"); }), "from 0 to 86400");
-  expect_contains(error_of([] { parse_script("\x1b[2Jboom\n", "s.txt"); }), "unknown command '\\x1B[2Jboom'");
+  expect_contains(error_of([] { parse_script("\x1b[2Jboom\n", "s.txt"); }),
+                  "unknown command '\\x1B[2Jboom'");
 }
 
 }  // namespace

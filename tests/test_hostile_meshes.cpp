@@ -121,19 +121,22 @@ TEST(HostileMeshes, MutatedOmFilesAreErrorsOrMeshes) {
 
 TEST(HostileMeshes, PlyWithoutEndHeader) {
   const auto start = std::chrono::steady_clock::now();
-  expect_contains(load_error("endless.ply", "ply\nformat ascii 1.0\nelement vertex 3\n"
-                                            "property float x\nproperty float y\n"),
+  expect_contains(load_error("endless.ply",
+                             "ply\nformat ascii 1.0\nelement vertex 3\n"
+                             "property float x\nproperty float y\n"),
                   "no 'end_header'");
   EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(1));
 }
 
 TEST(HostileMeshes, PlyHugeOrNegativeCounts) {
-  expect_contains(load_error("minus.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
-                                          "property float y\nproperty float z\nelement face -1e308\n"
-                                          "property list uchar int vertex_indices\nend_header\n"),
+  expect_contains(load_error("minus.ply",
+                             "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
+                             "property float y\nproperty float z\nelement face -1e308\n"
+                             "property list uchar int vertex_indices\nend_header\n"),
                   "count from 0 to 2147483647");
-  expect_contains(load_error("many.ply", "ply\nformat binary_little_endian 1.0\nelement vertex 2000000000\n"
-                                         "property float x\nproperty float y\nproperty float z\nend_header\n"),
+  expect_contains(load_error("many.ply",
+                             "ply\nformat binary_little_endian 1.0\nelement vertex 2000000000\n"
+                             "property float x\nproperty float y\nproperty float z\nend_header\n"),
                   "has room for at most 0");
 }
 
@@ -162,7 +165,8 @@ TEST(HostileMeshes, TruncatedFilesDoNotLoadShort) {
       "solid s\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\n"
       "endloop\nendfacet\nfacet normal 0 0 1\nouter loop\nvertex 1 0 0\nvertex 1 1 0\n";
   expect_contains(load_error("cut.stl", stl), "ends early");
-  expect_contains(load_error("cut2.stl", stl.substr(0, stl.find("facet normal", 10))), "no 'endsolid'");
+  expect_contains(load_error("cut2.stl", stl.substr(0, stl.find("facet normal", 10))),
+                  "no 'endsolid'");
   std::string binary_stl(80, ' ');
   put<uint32_t>(binary_stl, 3, false);
   binary_stl += std::string(100, '\0');
@@ -172,9 +176,10 @@ TEST(HostileMeshes, TruncatedFilesDoNotLoadShort) {
 TEST(HostileMeshes, AsciiPlyAndStlLoad) {
   EXPECT_EQ(1u, load_bytes("quad.ply", kAsciiPlyQuad).n_faces());
   const Mesh stl = load_bytes(
-      "two.stl", "solid s\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\n"
-                 "endloop\nendfacet\nfacet normal 0 0 1\nouter loop\nvertex 1 0 0\nvertex 1 1 0\n"
-                 "vertex 0 1 0\nendloop\nendfacet\nendsolid s\n");
+      "two.stl",
+      "solid s\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\n"
+      "endloop\nendfacet\nfacet normal 0 0 1\nouter loop\nvertex 1 0 0\nvertex 1 1 0\n"
+      "vertex 0 1 0\nendloop\nendfacet\nendsolid s\n");
   EXPECT_EQ(4u, stl.n_vertices());
   EXPECT_EQ(2u, stl.n_faces());
 }
@@ -182,7 +187,8 @@ TEST(HostileMeshes, AsciiPlyAndStlLoad) {
 // --- messages -------------------------------------------------------------------------------
 
 TEST(HostileMeshes, CarriageReturnOnlyObj) {
-  const Mesh mesh = load_bytes("mac.obj", "# old Mac line ends\rv 0 0 0\rv 1 0 0\rv 0 1 0\rf 1 2 3\r");
+  const Mesh mesh =
+      load_bytes("mac.obj", "# old Mac line ends\rv 0 0 0\rv 1 0 0\rv 0 1 0\rf 1 2 3\r");
   EXPECT_EQ(1u, mesh.n_faces());
   EXPECT_EQ(2, load_bytes("mixed.obj", "v 0 0 0\r\nv 1 0 0\rv 0 1 0\nf 1 2 3\n").n_faces() * 2);
 }

@@ -39,6 +39,9 @@ inline SolveMethod default_solve_method(size_t n_faces) {
 // is followed as a drag would follow it: the targets move from where the state was solved
 // to where they were set in sub-steps no larger than these, each solved loosely and warm-
 // started, and the last one to the full tolerance (docs/engine.md, "Large steps").
+// A jump is followed in at most this many sub-steps (PathOptions).
+inline constexpr int kMaxPathSteps = 1000;
+
 struct PathOptions {
   bool enabled = true;
   double max_turn_deg = 15.0;  // largest rotation of any handle per sub-step

@@ -34,7 +34,8 @@ struct NamedFile {
 // Throws primo::Error "<path>: <role> is the same file as <other role> (<other path>); nothing
 // was written" when two outputs, or an output and an input, are the same file (also through
 // links or different spellings of the path). Empty paths are skipped.
-void check_distinct_files(const std::vector<NamedFile>& outputs, const std::vector<NamedFile>& inputs);
+void check_distinct_files(const std::vector<NamedFile>& outputs,
+                          const std::vector<NamedFile>& inputs);
 
 // Result files written together (see above). Nothing reaches a target before commit(); the
 // destructor removes whatever was staged and not committed.

@@ -3,11 +3,33 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <exception>
+#include <string>
 #include <vector>
 
 #include "commands.h"
 #include "primo/error.h"
 #include "primo/parallel.h"
+
+namespace {
+
+// One line, whatever a file put into the message: control bytes (a terminal escape, a newline
+// from a JSON string) are shown as \xNN, never sent to the terminal.
+std::string printable(const char* message) {
+  std::string out;
+  for (const char* c = message; *c; ++c) {
+    const unsigned char b = static_cast<unsigned char>(*c);
+    if (b >= 0x20 && b != 0x7f) {
+      out += char(b);
+    } else {
+      char hex[8];
+      std::snprintf(hex, sizeof hex, "\\x%02X", b);
+      out += hex;
+    }
+  }
+  return out;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"PriMo: coupled prisms for intuitive surface modeling"};
@@ -37,11 +59,11 @@ int main(int argc, char** argv) {
     try {
       return run();
     } catch (const primo::Error& e) {
-      std::fprintf(stderr, "primo %s: error: %s\n", sub->get_name().c_str(), e.what());
+      std::fprintf(stderr, "primo %s: error: %s\n", sub->get_name().c_str(), printable(e.what()).c_str());
     } catch (const std::bad_alloc&) {
       std::fprintf(stderr, "primo %s: error: out of memory\n", sub->get_name().c_str());
     } catch (const std::exception& e) {
-      std::fprintf(stderr, "primo %s: error: %s\n", sub->get_name().c_str(), e.what());
+      std::fprintf(stderr, "primo %s: error: %s\n", sub->get_name().c_str(), printable(e.what()).c_str());
     }
     return 1;
   }

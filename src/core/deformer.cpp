@@ -25,6 +25,16 @@ std::string handle_label(const Handle& h, size_t index) {
   return h.name.empty() ? "handles[" + std::to_string(index) + "]" : "handle '" + h.name + "'";
 }
 
+// A transform that is not finite, or whose rotation is not one, would poison every state it
+// touches: refused where it enters.
+void check_transform(const Handle& h, size_t index, const RigidTransform& t) {
+  if (!t.rotation.allFinite() || !t.translation.allFinite())
+    throw Error(handle_label(h, index) + ": the transform is not finite");
+  if (!((t.rotation.transpose() * t.rotation - Mat3::Identity()).norm() < 1e-6) ||
+      !(t.rotation.determinant() > 0))
+    throw Error(handle_label(h, index) + ": the transform's rotation is not a rotation");
+}
+
 // The transform a fraction s of the way from `from` to `to`, for a body whose rest centre is
 // `center`: the centre moves on the straight line, the body turns on the shorter great
 // circle about it, as a handle dragged and turned with the gizmo does.
@@ -67,12 +77,19 @@ Deformer::Deformer(const Mesh& mesh, const PrismParameters& params, std::vector<
                     handle_label(handles_[h], h));
       face_body[f] = int(h);
     }
+    check_transform(handles_[h], h, handles_[h].transform);
     kinds.push_back(body_kind(handles_[h].fix));
   }
   for (int f = 0; f < n_faces; ++f) {
     if (face_body[f] >= 0) continue;
     face_body[f] = int(kinds.size());
     kinds.push_back(BodyKind::Free);
+  }
+  for (size_t i = 0; i < forces_.size(); ++i) {
+    if (!forces_[i].target_offset.allFinite() || !std::isfinite(forces_[i].stiffness) ||
+        forces_[i].stiffness < 0)
+      throw Error("forces[" + std::to_string(i) + "]: the target offset or stiffness is not finite "
+                  "and non-negative");
   }
   for (size_t i = 0; i < forces_.size(); ++i)
     for (int f : forces_[i].faces)
@@ -174,6 +191,7 @@ void Deformer::reset() {
 
 void Deformer::set_handle_transform(int handle, const RigidTransform& transform) {
   if (handle < 0 || handle >= int(handles_.size())) throw Error("no such handle");
+  check_transform(handles_[size_t(handle)], size_t(handle), transform);
   handles_[handle].transform = transform;
   place_handle(handle, transform);
 }
@@ -207,6 +225,8 @@ double Deformer::body_energy(int body) const {
 
 void Deformer::set_force_offset(int force, const Vec3& target_offset) {
   if (force < 0 || force >= int(forces_.size())) throw Error("no such force");
+  if (!target_offset.allFinite())
+    throw Error("forces[" + std::to_string(force) + "]: the target offset is not finite");
   forces_[force].target_offset = target_offset;
   problem_changed();
   rebuild_springs();
@@ -353,7 +373,9 @@ int Deformer::path_steps_needed(const PathOptions& options) const {
   for (size_t f = 0; f < forces_.size(); ++f)
     steps = std::max(steps, (forces_[f].target_offset - solved_offsets_[f]).norm() / move);
   // Not finite only for non-finite targets, which the solve will reject on its own.
-  return std::isfinite(steps) ? int(std::min(std::ceil(steps - 1e-9), 1e6)) : 1;
+  // At most kMaxPathSteps: a move of 100 bounding-box diagonals already takes 1,000, and a
+  // huge one (1e6 diagonals) would otherwise take a million sub-steps, each a factorization.
+  return std::isfinite(steps) ? int(std::min(std::ceil(steps - 1e-9), double(kMaxPathSteps))) : 1;
 }
 
 bool Deformer::path_pending(const PathOptions& options) const {
@@ -381,7 +403,9 @@ bool Deformer::follow_path(const SolveOptions& options, SolveReport& report) {
       problem_changed();
     }
     double e = energy();
-    for (int it = 0; it < options.path.max_step_iterations && budget > 0; ++it, --budget) {
+    --budget;  // a sub-step counts even when its first iteration finds no decrease
+    for (int it = 0; it < options.path.max_step_iterations; ++it) {
+      if (it > 0 && budget-- <= 0) break;
       const std::optional<double> after = guarded_iterate(options, e, report);
       if (report.stop_reason == "not finite") {
         known_energy_.reset();

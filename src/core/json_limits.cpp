@@ -12,8 +12,10 @@ void check_json_depth(std::string_view text, const std::string& label) {
     const char c = text[i];
     if (c == '\n') line = line + 1, line_start = i + 1;
     if (in_string) {
-      if (c == '\\') ++i;
-      else if (c == '"') in_string = false;
+      if (c == '\\')
+        ++i;
+      else if (c == '"')
+        in_string = false;
       continue;
     }
     if (c == '"') {

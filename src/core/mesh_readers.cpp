@@ -63,8 +63,9 @@ class ByteReader {
   // Throws unless `count` items of at least `min_bytes` each fit in what is left.
   void check_count(uint64_t count, size_t min_bytes, const std::string& what) const {
     if (min_bytes > 0 && count > left() / min_bytes)
-      fail(path_, what + ": the file declares " + std::to_string(count) + " but has room for at most " +
-                      std::to_string(left() / min_bytes) + " (corrupt count or truncated file)");
+      fail(path_, what + ": the file declares " + std::to_string(count) +
+                      " but has room for at most " + std::to_string(left() / min_bytes) +
+                      " (corrupt count or truncated file)");
   }
 
  private:
@@ -94,7 +95,9 @@ bool parse_count(std::string_view word, long long& value) {
   return !word.empty() && result.ec == std::errc() && result.ptr == end;
 }
 
-bool is_space(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\v' || c == '\f'; }
+bool is_space(char c) {
+  return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\v' || c == '\f';
+}
 
 // Whitespace-separated words of a text, with the line each starts on.
 class WordReader {
@@ -143,10 +146,18 @@ std::optional<PlyType> ply_type(std::string_view name) {
 
 size_t ply_size(PlyType t) {
   switch (t) {
-    case PlyType::Int8: case PlyType::Uint8: return 1;
-    case PlyType::Int16: case PlyType::Uint16: return 2;
-    case PlyType::Int32: case PlyType::Uint32: case PlyType::Float32: return 4;
-    case PlyType::Float64: return 8;
+    case PlyType::Int8:
+    case PlyType::Uint8:
+      return 1;
+    case PlyType::Int16:
+    case PlyType::Uint16:
+      return 2;
+    case PlyType::Int32:
+    case PlyType::Uint32:
+    case PlyType::Float32:
+      return 4;
+    case PlyType::Float64:
+      return 8;
   }
   return 1;
 }
@@ -172,27 +183,39 @@ enum class PlyFormat { Ascii, BinaryLittle, BinaryBig };
 class PlyValues {
  public:
   PlyValues(const std::string& path, std::string_view body, PlyFormat format)
-      : path_(path), format_(format), words_(body), bytes_(body, path, format == PlyFormat::BinaryBig) {}
+      : path_(path),
+        format_(format),
+        words_(body),
+        bytes_(body, path, format == PlyFormat::BinaryBig) {}
 
   double get(PlyType type, const std::string& what) {
     if (format_ == PlyFormat::Ascii) {
       const std::optional<std::string_view> word = words_.next();
       if (!word) fail(path_, "the file ends early (truncated?) in " + what);
       double value;
-      if (!parse_number(*word, value)) fail(path_, what + ": " + quoted(*word) + " is not a number");
+      if (!parse_number(*word, value))
+        fail(path_, what + ": " + quoted(*word) + " is not a number");
       if (ply_integral(type) && (value != std::floor(value) || std::abs(value) > 4294967295.0))
         fail(path_, what + ": " + quoted(*word) + " is not an integer");
       return type == PlyType::Float32 ? double(float(value)) : value;
     }
     switch (type) {
-      case PlyType::Int8: return bytes_.get<int8_t>(what);
-      case PlyType::Uint8: return bytes_.get<uint8_t>(what);
-      case PlyType::Int16: return bytes_.get<int16_t>(what);
-      case PlyType::Uint16: return bytes_.get<uint16_t>(what);
-      case PlyType::Int32: return bytes_.get<int32_t>(what);
-      case PlyType::Uint32: return bytes_.get<uint32_t>(what);
-      case PlyType::Float32: return bytes_.get<float>(what);
-      case PlyType::Float64: return bytes_.get<double>(what);
+      case PlyType::Int8:
+        return bytes_.get<int8_t>(what);
+      case PlyType::Uint8:
+        return bytes_.get<uint8_t>(what);
+      case PlyType::Int16:
+        return bytes_.get<int16_t>(what);
+      case PlyType::Uint16:
+        return bytes_.get<uint16_t>(what);
+      case PlyType::Int32:
+        return bytes_.get<int32_t>(what);
+      case PlyType::Uint32:
+        return bytes_.get<uint32_t>(what);
+      case PlyType::Float32:
+        return bytes_.get<float>(what);
+      case PlyType::Float64:
+        return bytes_.get<double>(what);
     }
     return 0.0;
   }
@@ -208,7 +231,8 @@ class PlyValues {
   void check_end() {
     if (format_ == PlyFormat::Ascii) {
       if (const auto word = words_.next())
-        fail(path_, "unexpected data " + quoted(*word) + " after the last element the header declares");
+        fail(path_,
+             "unexpected data " + quoted(*word) + " after the last element the header declares");
     } else if (bytes_.left() > 0) {
       fail(path_, std::to_string(bytes_.left()) +
                       " bytes of unexpected data after the last element the header declares");
@@ -277,10 +301,14 @@ PolygonSoup read_ply(const std::string& path, std::string_view bytes) {
     if (words[0] == "format") {
       if (words.size() != 3 || words[2] != "1.0")
         fail(path, at + ": expected 'format ascii|binary_little_endian|binary_big_endian 1.0'");
-      if (words[1] == "ascii") format = PlyFormat::Ascii;
-      else if (words[1] == "binary_little_endian") format = PlyFormat::BinaryLittle;
-      else if (words[1] == "binary_big_endian") format = PlyFormat::BinaryBig;
-      else fail(path, at + ": unknown format " + quoted(words[1]));
+      if (words[1] == "ascii")
+        format = PlyFormat::Ascii;
+      else if (words[1] == "binary_little_endian")
+        format = PlyFormat::BinaryLittle;
+      else if (words[1] == "binary_big_endian")
+        format = PlyFormat::BinaryBig;
+      else
+        fail(path, at + ": unknown format " + quoted(words[1]));
     } else if (words[0] == "element") {
       long long count;
       if (words.size() != 3 || !parse_count(words[2], count) || count < 0 || count > INT32_MAX)
@@ -332,8 +360,7 @@ PolygonSoup read_ply(const std::string& path, std::string_view bytes) {
     }
     if (is_vertex && (xyz[0] < 0 || xyz[1] < 0 || xyz[2] < 0))
       fail(path, "the PLY element 'vertex' has no x, y and z properties");
-    if (is_face && indices < 0)
-      fail(path, "the PLY element 'face' has no 'vertex_indices' list");
+    if (is_face && indices < 0) fail(path, "the PLY element 'face' has no 'vertex_indices' list");
     if (is_face && !ply_integral(element.properties[size_t(indices)].type))
       fail(path, "the PLY face list 'vertex_indices' must hold integers");
     if (element.properties.empty()) continue;  // takes no bytes, however many there are
@@ -387,8 +414,7 @@ class StlVertices {
   explicit StlVertices(PolygonSoup& soup) : soup_(soup) {}
   int add(const std::string& path, const std::array<float, 3>& p, long long facet) {
     for (float c : p)
-      if (!std::isfinite(c))
-        fail(path, "facet " + str(facet) + " has a non-finite coordinate");
+      if (!std::isfinite(c)) fail(path, "facet " + str(facet) + " has a non-finite coordinate");
     const auto [it, inserted] = index_.emplace(p, int(soup_.points.size()));
     if (inserted) soup_.points.emplace_back(p[0], p[1], p[2]);
     return it->second;
@@ -405,17 +431,20 @@ PolygonSoup read_ascii_stl(const std::string& path, std::string_view text) {
   WordReader words(text);
   auto expect = [&](std::string_view keyword, const std::string& where) {
     const auto word = words.next();
-    if (!word) fail(path, "line " + str(words.line()) + ": the file ends early (truncated?) in " + where);
+    if (!word)
+      fail(path, "line " + str(words.line()) + ": the file ends early (truncated?) in " + where);
     if (*word != keyword)
-      fail(path, "line " + str(words.line()) + ": " + where + ": expected '" + std::string(keyword) +
-                     "', found " + quoted(*word));
+      fail(path, "line " + str(words.line()) + ": " + where + ": expected '" +
+                     std::string(keyword) + "', found " + quoted(*word));
   };
   auto number = [&](const std::string& where) {
     const auto word = words.next();
-    if (!word) fail(path, "line " + str(words.line()) + ": the file ends early (truncated?) in " + where);
+    if (!word)
+      fail(path, "line " + str(words.line()) + ": the file ends early (truncated?) in " + where);
     double v;
     if (!parse_number(*word, v))
-      fail(path, "line " + str(words.line()) + ": " + where + ": " + quoted(*word) + " is not a number");
+      fail(path,
+           "line " + str(words.line()) + ": " + where + ": " + quoted(*word) + " is not a number");
     return float(v);
   };
   bool in_solid = false;
@@ -436,7 +465,8 @@ PolygonSoup read_ascii_stl(const std::string& path, std::string_view text) {
       continue;
     }
     if (*word != "facet")
-      fail(path, "line " + str(words.line()) + ": expected 'facet' or 'endsolid', found " + quoted(*word));
+      fail(path, "line " + str(words.line()) + ": expected 'facet' or 'endsolid', found " +
+                     quoted(*word));
     const std::string where = "facet " + str(facet);
     expect("normal", where);
     for (int k = 0; k < 3; ++k) number(where);
@@ -445,11 +475,12 @@ PolygonSoup read_ascii_stl(const std::string& path, std::string_view text) {
     std::vector<int> face;
     while (true) {
       const auto next = words.next();
-      if (!next) fail(path, "line " + str(words.line()) + ": the file ends early (truncated?) in " + where);
+      if (!next)
+        fail(path, "line " + str(words.line()) + ": the file ends early (truncated?) in " + where);
       if (*next == "endloop") break;
       if (*next != "vertex")
-        fail(path, "line " + str(words.line()) + ": " + where + ": expected 'vertex' or 'endloop', found " +
-                       quoted(*next));
+        fail(path, "line " + str(words.line()) + ": " + where +
+                       ": expected 'vertex' or 'endloop', found " + quoted(*next));
       std::array<float, 3> p;
       for (float& c : p) c = number(where);
       face.push_back(vertices.add(path, p, facet));
@@ -458,7 +489,8 @@ PolygonSoup read_ascii_stl(const std::string& path, std::string_view text) {
     soup.faces.push_back(std::move(face));
     ++facet;
   }
-  if (in_solid) fail(path, "the file ends early (truncated?): no 'endsolid' after facet " + str(facet - 1));
+  if (in_solid)
+    fail(path, "the file ends early (truncated?): no 'endsolid' after facet " + str(facet - 1));
   return soup;
 }
 
@@ -466,13 +498,11 @@ PolygonSoup read_ascii_stl(const std::string& path, std::string_view text) {
 
 PolygonSoup read_stl(const std::string& path, std::string_view bytes) {
   if (bytes.empty()) return {};  // OpenMesh's "empty mesh": reported as such by validation
-  const bool sized_as_binary =
-      bytes.size() >= 84 &&
-      [&] {
-        uint32_t n;
-        std::memcpy(&n, bytes.data() + 80, 4);
-        return 84 + 50 * uint64_t(n) == bytes.size();
-      }();
+  const bool sized_as_binary = bytes.size() >= 84 && [&] {
+    uint32_t n;
+    std::memcpy(&n, bytes.data() + 80, 4);
+    return 84 + 50 * uint64_t(n) == bytes.size();
+  }();
   size_t start = 0;
   while (start < bytes.size() && is_space(bytes[start])) ++start;
   if (!sized_as_binary && bytes.substr(start, 5) == "solid") return read_ascii_stl(path, bytes);
@@ -522,10 +552,14 @@ constexpr int kTypePos = 0, kTypeCustom = 6, kTypeTopology = 7;
 
 long long om_integer(ByteReader& in, int bits, bool is_signed, const std::string& what) {
   switch (bits) {
-    case 0: return is_signed ? in.get<int8_t>(what) : in.get<uint8_t>(what);
-    case 1: return is_signed ? in.get<int16_t>(what) : in.get<uint16_t>(what);
-    case 2: return is_signed ? in.get<int32_t>(what) : in.get<uint32_t>(what);
-    default: return is_signed ? in.get<int64_t>(what) : (long long)(in.get<uint64_t>(what) & INT64_MAX);
+    case 0:
+      return is_signed ? in.get<int8_t>(what) : in.get<uint8_t>(what);
+    case 1:
+      return is_signed ? in.get<int16_t>(what) : in.get<uint16_t>(what);
+    case 2:
+      return is_signed ? in.get<int32_t>(what) : in.get<uint32_t>(what);
+    default:
+      return is_signed ? in.get<int64_t>(what) : (long long)(in.get<uint64_t>(what) & INT64_MAX);
   }
 }
 
@@ -533,7 +567,8 @@ long long om_integer(ByteReader& in, int bits, bool is_signed, const std::string
 
 PolygonSoup read_om(const std::string& path, std::string_view bytes) {
   ByteReader in(bytes, path, false);
-  if (bytes.size() < 2 || bytes[0] != 'O' || bytes[1] != 'M') fail(path, "not an OM file (no 'OM' signature)");
+  if (bytes.size() < 2 || bytes[0] != 'O' || bytes[1] != 'M')
+    fail(path, "not an OM file (no 'OM' signature)");
   in.skip(2, "the OM header");
   const char mesh_kind = char(in.get<uint8_t>("the OM header"));
   if (mesh_kind != 'T' && mesh_kind != 'Q' && mesh_kind != 'P')
@@ -565,12 +600,23 @@ PolygonSoup read_om(const std::string& path, std::string_view bytes) {
     if (chunk.named) in.skip(in.get<uint8_t>(what), what);  // the property's name
     uint64_t count = 0;
     switch (chunk.entity) {
-      case kEntityVertex: count = n_vertices; break;
-      case kEntityFace: count = n_faces; break;
-      case kEntityEdge: count = n_edges; break;
-      case kEntityHalfedge: count = 2 * uint64_t(n_edges); break;
-      case kEntityMesh: count = 1; break;
-      default: fail(path, what + ": unknown entity " + str(chunk.entity));
+      case kEntityVertex:
+        count = n_vertices;
+        break;
+      case kEntityFace:
+        count = n_faces;
+        break;
+      case kEntityEdge:
+        count = n_edges;
+        break;
+      case kEntityHalfedge:
+        count = 2 * uint64_t(n_edges);
+        break;
+      case kEntityMesh:
+        count = 1;
+        break;
+      default:
+        fail(path, what + ": unknown entity " + str(chunk.entity));
     }
     if (chunk.type == kTypeCustom) {
       if (version > 0x41) in.skip(in.get<uint8_t>(what), what);  // the property's type name
@@ -585,7 +631,8 @@ PolygonSoup read_om(const std::string& path, std::string_view bytes) {
       soup.points.reserve(count);
       for (uint64_t v = 0; v < count; ++v) {
         Vec3 p;
-        for (int c = 0; c < 3; ++c) p[c] = chunk.bits == 0 ? double(in.get<float>(what)) : in.get<double>(what);
+        for (int c = 0; c < 3; ++c)
+          p[c] = chunk.bits == 0 ? double(in.get<float>(what)) : in.get<double>(what);
         soup.points.push_back(p);
       }
       have_positions = true;
@@ -602,7 +649,8 @@ PolygonSoup read_om(const std::string& path, std::string_view bytes) {
         std::vector<int> face;
         for (size_t k = 0; k < degree; ++k) {
           const long long v = om_integer(in, chunk.bits, false, where);
-          if (v < 0 || v >= n_vertices) fail(path, where + ": vertex index " + str(v) + " is out of range");
+          if (v < 0 || v >= n_vertices)
+            fail(path, where + ": vertex index " + str(v) + " is out of range");
           face.push_back(int(v));
         }
         soup.faces.push_back(std::move(face));
@@ -615,8 +663,10 @@ PolygonSoup read_om(const std::string& path, std::string_view bytes) {
       next.resize(count), to_vertex.resize(count), face_of_halfedge.resize(count);
       for (uint64_t h = 0; h < count; ++h) {
         next[h] = int(std::clamp<long long>(om_integer(in, chunk.bits, true, what), -1, INT32_MAX));
-        to_vertex[h] = int(std::clamp<long long>(om_integer(in, chunk.bits, true, what), -1, INT32_MAX));
-        face_of_halfedge[h] = int(std::clamp<long long>(om_integer(in, chunk.bits, true, what), -1, INT32_MAX));
+        to_vertex[h] =
+            int(std::clamp<long long>(om_integer(in, chunk.bits, true, what), -1, INT32_MAX));
+        face_of_halfedge[h] =
+            int(std::clamp<long long>(om_integer(in, chunk.bits, true, what), -1, INT32_MAX));
       }
       have_halfedges = true;
       continue;
@@ -625,7 +675,8 @@ PolygonSoup read_om(const std::string& path, std::string_view bytes) {
       in.check_count(count, size_t(1) << chunk.bits, what);
       face_halfedge.resize(count);
       for (uint64_t f = 0; f < count; ++f)
-        face_halfedge[f] = int(std::clamp<long long>(om_integer(in, chunk.bits, true, what), -1, INT32_MAX));
+        face_halfedge[f] =
+            int(std::clamp<long long>(om_integer(in, chunk.bits, true, what), -1, INT32_MAX));
       have_face_topology = true;
       continue;
     }
@@ -648,12 +699,14 @@ PolygonSoup read_om(const std::string& path, std::string_view bytes) {
       std::vector<int> face;
       int h = face_halfedge[f];
       for (int steps = 0;; ++steps) {
-        if (h < 0 || h >= n_halfedges) fail(path, where + ": halfedge " + str(h) + " is out of range");
+        if (h < 0 || h >= n_halfedges)
+          fail(path, where + ": halfedge " + str(h) + " is out of range");
         if (face_of_halfedge[size_t(h)] != int(f))
           fail(path, where + ": its halfedge " + str(h) + " belongs to another face");
         if (steps > n_halfedges) fail(path, where + ": its halfedges do not close into a loop");
         const int v = to_vertex[size_t(h)];
-        if (v < 0 || v >= int(n_vertices)) fail(path, where + ": vertex index " + str(v) + " is out of range");
+        if (v < 0 || v >= int(n_vertices))
+          fail(path, where + ": vertex index " + str(v) + " is out of range");
         face.push_back(v);
         h = next[size_t(h)];
         if (h == face_halfedge[f]) break;
@@ -679,7 +732,8 @@ PolygonSoup binary_off_layout(const std::string& path, std::string_view data, si
   const int32_t n_faces = in.get<int32_t>("the binary OFF counts");
   in.get<int32_t>("the binary OFF counts");
   if (n_vertices < 0 || n_faces < 0)
-    fail(path, "binary OFF: negative counts (" + str(n_vertices) + " vertices, " + str(n_faces) + " faces)");
+    fail(path, "binary OFF: negative counts (" + str(n_vertices) + " vertices, " + str(n_faces) +
+                   " faces)");
   const size_t vertex_bytes = 4 * (3 + extra_floats);
   in.check_count(uint64_t(n_vertices), vertex_bytes, "binary OFF vertices");
   PolygonSoup soup;
@@ -702,7 +756,8 @@ PolygonSoup binary_off_layout(const std::string& path, std::string_view data, si
     for (int& v : face) v = in.get<int32_t>(what);
     if (colour_counts) {
       const int32_t colours = in.get<int32_t>(what);
-      if (colours < 0 || colours > 4) fail(path, what + ": colour count " + str(colours) + " (expected 0 to 4)");
+      if (colours < 0 || colours > 4)
+        fail(path, what + ": colour count " + str(colours) + " (expected 0 to 4)");
       in.skip(4 * size_t(colours), what);
     }
     soup.faces.push_back(std::move(face));
@@ -717,12 +772,15 @@ PolygonSoup binary_off_layout(const std::string& path, std::string_view data, si
 
 }  // namespace
 
-PolygonSoup read_binary_off(const std::string& path, std::string_view keyword, std::string_view data) {
+PolygonSoup read_binary_off(const std::string& path, std::string_view keyword,
+                            std::string_view data) {
   size_t extra = 0;
   if (keyword.substr(0, 2) == "ST") extra += 2, keyword.remove_prefix(2);
   if (!keyword.empty() && keyword[0] == 'C') extra += 4, keyword.remove_prefix(1);
   if (!keyword.empty() && keyword[0] == 'N') extra += 3, keyword.remove_prefix(1);
-  struct Layout { bool big_endian, colour_counts; };
+  struct Layout {
+    bool big_endian, colour_counts;
+  };
   const Layout layouts[] = {{true, true}, {false, false}, {false, true}, {true, false}};
   std::optional<Error> first_error;
   for (const Layout& layout : layouts) {

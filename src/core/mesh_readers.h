@@ -17,7 +17,8 @@ PolygonSoup read_stl(const std::string& path, std::string_view bytes);
 PolygonSoup read_om(const std::string& path, std::string_view bytes);
 // `keyword` is the header word ("OFF", "COFF", "NOFF", ...: it says which extra numbers follow
 // each vertex); `data` starts right after the "OFF BINARY" line.
-PolygonSoup read_binary_off(const std::string& path, std::string_view keyword, std::string_view data);
+PolygonSoup read_binary_off(const std::string& path, std::string_view keyword,
+                            std::string_view data);
 
 // `text` quoted for a message, at most 40 characters, control and non-ASCII bytes as \xNN: a
 // file's bytes never reach the terminal raw.

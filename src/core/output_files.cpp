@@ -24,7 +24,8 @@ namespace {
 // Lower-case extension with the dot (".obj"), or "" when there is none.
 std::string extension_of(const std::string& path) {
   std::string ext = fs::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
   return ext;
 }
 
@@ -33,9 +34,7 @@ fs::path folder_of(const std::string& path) {
   return target.has_parent_path() ? target.parent_path() : fs::path(".");
 }
 
-bool process_alive(long pid) {
-  return pid > 0 && (::kill(pid_t(pid), 0) == 0 || errno != ESRCH);
-}
+bool process_alive(long pid) { return pid > 0 && (::kill(pid_t(pid), 0) == 0 || errno != ESRCH); }
 
 // Writes all of `bytes` to a new file and flushes it to disk; returns errno, 0 on success.
 int write_whole_file(const std::string& file, const std::string& bytes) {
@@ -67,7 +66,8 @@ void check_output_path(const std::string& path) {
   const fs::file_status status = fs::status(path, ec);
   if (fs::is_directory(status)) throw Error(path + ": cannot write: this is a folder, not a file");
   if (fs::exists(status) && !fs::is_regular_file(status))
-    throw Error(path + ": cannot write: this is a device or another special file, not a regular file");
+    throw Error(path +
+                ": cannot write: this is a device or another special file, not a regular file");
 }
 
 void check_mesh_output_path(const std::string& path) {
@@ -79,11 +79,13 @@ void check_mesh_output_path(const std::string& path) {
   check_output_path(path);
 }
 
-void check_distinct_files(const std::vector<NamedFile>& outputs, const std::vector<NamedFile>& inputs) {
+void check_distinct_files(const std::vector<NamedFile>& outputs,
+                          const std::vector<NamedFile>& inputs) {
   const auto same = [](const std::string& a, const std::string& b) {
     std::error_code ec;
     if (fs::exists(a, ec) && fs::exists(b, ec)) return fs::equivalent(a, b, ec);
-    return fs::weakly_canonical(fs::absolute(a, ec), ec) == fs::weakly_canonical(fs::absolute(b, ec), ec);
+    return fs::weakly_canonical(fs::absolute(a, ec), ec) ==
+           fs::weakly_canonical(fs::absolute(b, ec), ec);
   };
   for (size_t i = 0; i < outputs.size(); ++i) {
     if (outputs[i].path.empty()) continue;
@@ -92,7 +94,8 @@ void check_distinct_files(const std::vector<NamedFile>& outputs, const std::vect
                   other.role + " (" + other.path + "); nothing was written");
     };
     for (size_t j = 0; j < i; ++j)
-      if (!outputs[j].path.empty() && same(outputs[i].path, outputs[j].path)) refuse(outputs[j], "");
+      if (!outputs[j].path.empty() && same(outputs[i].path, outputs[j].path))
+        refuse(outputs[j], "");
     for (const NamedFile& input : inputs)
       if (!input.path.empty() && same(outputs[i].path, input.path)) refuse(input, "");
   }
