@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.h"
+#include "rethrow_naming.h"
 #include "primo/deformer.h"
 #include "primo/error.h"
 #include "primo/mesh_import.h"
@@ -28,19 +29,6 @@ struct DeformArguments {
   std::string solver;
   bool one_step = false;
 };
-
-// A message from the engine names what is wrong but not the file it came from.
-[[noreturn]] void rethrow_naming(const std::string& file) {
-  try {
-    throw;
-  } catch (const Error& e) {
-    const std::string what = e.what();
-    if (what.rfind(file + ":", 0) == 0) throw;
-    throw Error(file + ": " + what);
-  } catch (const std::bad_alloc&) {
-    throw Error(file + ": out of memory (the mesh or the solver needs more than this machine has)");
-  }
-}
 
 int run_deform(const DeformArguments& args) {
   // Every output is checked before any work: its folder, not a special file, and not the same

@@ -18,6 +18,7 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.h"
+#include "rethrow_naming.h"
 #include "primo/error.h"
 #include "primo/mesh_import.h"
 #include "primo/mesh_io.h"
@@ -57,19 +58,6 @@ void limit_threads(int threads) {
   if (threads <= 0) return;
   if (auto f = reinterpret_cast<void (*)(int)>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"))) f(threads);
   if (auto f = reinterpret_cast<void (*)(int)>(dlsym(RTLD_DEFAULT, "omp_set_num_threads"))) f(threads);
-}
-
-// A message from the engine names what is wrong but not the file it came from.
-[[noreturn]] void rethrow_naming(const std::string& file) {
-  try {
-    throw;
-  } catch (const Error& e) {
-    const std::string what = e.what();
-    if (what.rfind(file + ":", 0) == 0) throw;
-    throw Error(file + ": " + what);
-  } catch (const std::bad_alloc&) {
-    throw Error(file + ": out of memory (the mesh or the solver needs more than this machine has)");
-  }
 }
 
 // More frame files than this is a mistake (--every forgotten on a long session), not a request.
