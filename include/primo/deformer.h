@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "primo/constraints.h"
+#include "primo/drag_predictor.h"
 #include "primo/global_solver.h"
 #include "primo/hierarchical_solver.h"
 #include "primo/mesh.h"
@@ -78,6 +79,11 @@ struct SolveOptions {
   // shape (HierarchicalSolver::set_coarse_correction_callback). The editor shows it on big
   // meshes, so that the surface moves twice a cycle while a handle is dragged.
   std::function<void()> on_coarse_correction;
+  // A solve that follows a target move like the one before it (a drag's frame) starts from
+  // the state moved on by this fraction of its change over the last frame, where that lowers
+  // the energy (DragPredictor; 0: from the state as it is). Not across a jump followed in
+  // sub-steps (PathOptions). Measured in docs/performance.md.
+  double drag_prediction = 1.0;
 };
 
 struct SolveReport {
@@ -175,6 +181,14 @@ class Deformer {
   // iterate(), except that an iteration ending in a non-finite energy is undone and sets
   // report.stop_reason to "not finite".
   std::optional<double> guarded_iterate(const SolveOptions& options, double e, SolveReport& report);
+  // solve() after the drag prediction: the stages of a solve at the set targets.
+  SolveReport solve_now(const SolveOptions& options);
+  // Starts a drag's frame from the predicted state (SolveOptions::drag_prediction).
+  void predict_drag(double multiplier);
+  // How the targets moved since the state was solved: per handle, what it prescribes of its
+  // centre's move and its turn, and per force its offset's move, each over the path's
+  // sub-step limits (PathOptions) so that entries weigh alike.
+  std::vector<double> target_move() const;
   bool make_solver(const SolveOptions& options);  // whether it was made now
   double body_energy(int body) const;  // of the joints and springs on one body
   void rebuild_springs();
@@ -187,6 +201,8 @@ class Deformer {
   RigidSystem system_;
   std::vector<BodyState> state_;
   std::vector<BodyState> last_good_state_;  // before the current iteration (guarded_iterate)
+  DragPredictor predictor_;
+  std::vector<BodyState> predicted_;
   std::unique_ptr<GlobalSolver> global_;  // made on first use: symbolic analysis once
   std::unique_ptr<HierarchicalSolver> hierarchical_;  // made on first use
   void problem_changed();  // targets or state were set from outside

@@ -83,6 +83,10 @@ Command register_bench(CLI::App& app) {
                    "(0: the last only)")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
+  drag->add_option("--drag-prediction", drag_args->drag_prediction,
+                   "Fraction of the last frame's change a frame starts from (0: none)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 2.0));
   drag->add_flag("--drag-only", drag_args->drag_only,
                  "Only the frames: no solving on to convergence, no full solve from rest");
   // Experiments with the hierarchical solver's settings (SolveOptions::hierarchical); the

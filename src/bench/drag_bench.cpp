@@ -320,6 +320,7 @@ int run_drag_bench(const DragBenchOptions& args) {
   out["frames"] = args.frames;
   out["subdivide"] = args.subdivide;
   out["bbox_handles"] = args.bbox_handles;
+  out["drag_prediction"] = args.drag_prediction;
   std::printf("primo bench drag %s  [build: %s]\n\n", args.scenario.c_str(), build.c_str());
 
   std::string mesh_path = scenario.mesh_path;
@@ -350,11 +351,13 @@ int run_drag_bench(const DragBenchOptions& args) {
   for (const Handle& h : c.handles)
     std::printf(" %s (%zu faces)", h.name.empty() ? "-" : h.name.c_str(), h.faces.size());
   std::printf("; %zu forces\n", c.forces.size());
-  std::printf("Solver     %s, %d frames of one iteration each%s\n", solve_method_name(method),
-              args.frames, args.drag_only ? " (--drag-only)" : "");
+  std::printf("Solver     %s, %d frames of one iteration each, drag prediction %g%s\n",
+              solve_method_name(method), args.frames, args.drag_prediction,
+              args.drag_only ? " (--drag-only)" : "");
   SolveOptions base;
   base.method = method;
   base.hierarchical = args.hierarchical;
+  base.drag_prediction = args.drag_prediction;
   // The full solve from rest is the one-step solve the drag's figures have always been
   // compared with (docs/performance.md); a drag's frames are small steps either way.
   base.path.enabled = false;

@@ -13,6 +13,7 @@
 
 #include <string>
 
+#include "primo/deformer.h"
 #include "primo/hierarchical_solver.h"
 
 namespace primo::bench {
@@ -30,6 +31,7 @@ struct DragBenchOptions {
   // solver converges to for that frame's targets: the lag the artist sees. 0: the last frame
   // only (its converged shape is the one the solve after the drag reaches).
   int lag_every = 10;
+  double drag_prediction = SolveOptions{}.drag_prediction;  // SolveOptions::drag_prediction
   HierarchicalOptions hierarchical;  // the core's defaults unless the experiment flags say otherwise
 };
 

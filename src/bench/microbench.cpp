@@ -7,6 +7,8 @@
 //  - LocalMatch: one body's match against its neighbours (local_solver.h, paper Sect. 4.1);
 //  - LocalSweep / PlannedSweep: one Gauss-Seidel sweep over every body, plain and the solvers'
 //    two-thread planned sweep;
+//  - DragPrediction / SystemEnergy: a drag frame's prediction and the energy pass that
+//    checks it (drag_predictor.h);
 //  - GlobalAssembly: assembling the global Gauss-Newton system (global_solver.h, Sect. 4.2),
 //    timed by the solver's own assembly clock so that the factorization that follows is not
 //    counted (10 iterations each, which take a few seconds in all because of it).
@@ -26,6 +28,7 @@
 #include <vector>
 
 #include "primo/deformer.h"
+#include "primo/drag_predictor.h"
 #include "primo/geometry.h"
 #include "primo/global_solver.h"
 #include "primo/horn.h"
@@ -145,6 +148,35 @@ void PlannedSweep(benchmark::State& run) {
   run.counters["faces"] = double(limb.mesh.n_faces());
 }
 BENCHMARK(PlannedSweep)->Arg(60)->Arg(240)->Unit(benchmark::kMicrosecond)->UseRealTime();
+
+// A drag frame's extra work with the predictor (drag_predictor.h): every body carried on by
+// its last change (argument 2: a steady drag, fraction 1; otherwise 0.7), and the energy
+// pass that checks the prediction, for comparison (bands 4800: 192,000 faces).
+void DragPrediction(benchmark::State& run) {
+  const Limb& limb = Limb::of(int(run.range(0)));
+  const RigidSystem& system = limb.deformer.system();
+  std::vector<BodyState> start(system.n_bodies());
+  for (int b = 0; b < system.n_bodies(); ++b)
+    start[size_t(b)] = {Mat3::Identity(), system.bodies[size_t(b)].rest_center};
+  DragPredictor predictor;
+  predictor.remember({1.0}, start);
+  const double fraction = run.range(1) == 2 ? 1.0 : 0.7;
+  std::vector<BodyState> predicted;
+  for (auto _ : run) {
+    predictor.predict(system, limb.state, fraction, predicted);
+    benchmark::ClobberMemory();
+  }
+  run.SetItemsProcessed(run.iterations() * system.n_bodies());
+}
+BENCHMARK(DragPrediction)->Args({240, 2})->Args({4800, 2})->Args({4800, 1})
+    ->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void SystemEnergy(benchmark::State& run) {
+  const Limb& limb = Limb::of(int(run.range(0)));
+  for (auto _ : run) benchmark::DoNotOptimize(limb.deformer.system().energy(limb.state));
+  run.SetItemsProcessed(run.iterations() * limb.deformer.system().n_bodies());
+}
+BENCHMARK(SystemEnergy)->Arg(240)->Arg(4800)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 // factorize_at assembles and then factorizes; only the assembly is reported, read from the
 // solver's assembly clock (manual time), so the figure is the assembly's alone. The numeric

@@ -178,6 +178,7 @@ BodyState Deformer::handle_state(int handle) const {
 
 void Deformer::reset() {
   problem_changed();
+  predictor_.forget();
   exact_newton_ = false;
   // Free prisms at rest are the solution for handles at rest: a path starts there.
   solved_transforms_.assign(handles_.size(), RigidTransform::identity());
@@ -232,7 +233,67 @@ void Deformer::set_force_offset(int force, const Vec3& target_offset) {
   rebuild_springs();
 }
 
+std::vector<double> Deformer::target_move() const {
+  const PathOptions limits;
+  const double move = limits.max_move * layer_.bounding_box_diagonal;
+  std::vector<double> d;
+  d.reserve(6 * handles_.size() + 3 * forces_.size());
+  for (size_t h = 0; h < handles_.size(); ++h) {
+    const RigidTransform& from = solved_transforms_[h];
+    const RigidTransform& to = handles_[h].transform;
+    const Vec3& center = system_.bodies[h].rest_center;
+    const Fix fix = handles_[h].fix;
+    if (fix != Fix::Orientation) {
+      const Vec3 shift = (to.apply(center) - from.apply(center)) / move;
+      d.insert(d.end(), {shift.x(), shift.y(), shift.z()});
+    }
+    if (fix != Fix::Position) {
+      const Eigen::AngleAxisd turn(Mat3(to.rotation * from.rotation.transpose()));
+      const Vec3 v = turn.axis() * (turn.angle() * 180.0 / M_PI / limits.max_turn_deg);
+      d.insert(d.end(), {v.x(), v.y(), v.z()});
+    }
+  }
+  for (size_t f = 0; f < forces_.size(); ++f) {
+    const Vec3 shift = (forces_[f].target_offset - solved_offsets_[f]) / move;
+    d.insert(d.end(), {shift.x(), shift.y(), shift.z()});
+  }
+  return d;
+}
+
+void Deformer::predict_drag(double multiplier) {
+  if (!(multiplier > 0.0)) {
+    predictor_.forget();
+    return;
+  }
+  const std::vector<double> move = target_move();
+  const double fraction = predictor_.fraction(move, multiplier);
+  const double now = fraction > 0.0 ? energy() : 0.0;
+  if (fraction > 0.0 && std::isfinite(now)) {
+    predictor_.predict(system_, state_, fraction, predicted_);
+    const double predicted = system_.energy(predicted_);
+    // Where the prediction does not lower the energy (the drag turned, the minimum jumped),
+    // the frame starts where the last one ended, as without it.
+    if (predicted < now) {
+      state_.swap(predicted_);
+      known_energy_ = predicted;
+      predictor_.take(move, predicted_);  // the state before the prediction, without a copy
+      return;
+    }
+  }
+  predictor_.remember(move, state_);
+}
+
 SolveReport Deformer::solve(const SolveOptions& options) {
+  // A jump followed in sub-steps is a continuation of its own: a prediction on top would put
+  // the state ahead of the sub-steps' targets, and its change would be no frame of a drag.
+  if (path_pending(options.path))
+    predictor_.forget();
+  else
+    predict_drag(options.drag_prediction);
+  return solve_now(options);
+}
+
+SolveReport Deformer::solve_now(const SolveOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   SolveReport report;
   const double diagonal = layer_.bounding_box_diagonal;
@@ -258,7 +319,7 @@ SolveReport Deformer::solve(const SolveOptions& options) {
     first.method = SolveMethod::Hierarchical;
     first.hierarchical_start = false;
     first.max_iterations = options.max_hierarchical_cycles;
-    const SolveReport cycles = solve(first);
+    const SolveReport cycles = solve_now(first);
     report.path_steps = cycles.path_steps;
     report.path_iterations = cycles.path_iterations;
     report.hierarchical_cycles = cycles.iterations;
@@ -501,6 +562,7 @@ void Deformer::set_face_motions(const std::vector<RigidTransform>& motions) {
     if (!m.rotation.allFinite() || !m.translation.allFinite())
       throw Error("a face motion is not finite");
   problem_changed();
+  predictor_.forget();
   exact_newton_ = false;
   for (int b = 0; b < system_.n_bodies(); ++b) {
     const RigidSystem::Body& body = system_.bodies[b];
