@@ -44,10 +44,10 @@ struct SessionTarget {
 struct SessionEvent {
   enum class Type { Handles, Targets, Factors, Prisms, Undo, Redo };
   Type type = Type::Handles;
-  double t = 0.0;  // seconds since the recording started
-  int frame = 0;   // editor frame since the recording started
-  std::vector<SessionHandle> handles;  // Handles: the whole list afterwards
-  std::vector<SessionTarget> poses;    // Targets: the handles whose pose changed
+  double t = 0.0;                           // seconds since the recording started
+  int frame = 0;                            // editor frame since the recording started
+  std::vector<SessionHandle> handles;       // Handles: the whole list afterwards
+  std::vector<SessionTarget> poses;         // Targets: the handles whose pose changed
   FactorLayer layer = FactorLayer::Height;  // Factors
   std::vector<int> faces;                   // Factors: faces whose factor changed...
   std::vector<double> values;               // ...and their new values
