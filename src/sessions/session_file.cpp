@@ -187,12 +187,15 @@ SessionPrisms parse_prisms(const json& j, const std::string& path) {
   return p;
 }
 
-// Sparse factors: faces whose value is not 1.
-json sparse_factors(const FaceFactors& f) {
+// Sparse factors: faces whose value is not 1, then the listed ones not yet made into an array
+// (a session read and written again without meeting its mesh).
+json sparse_factors(const FaceFactors& f, const ListedFactors& listed) {
   json faces = json::array(), values = json::array();
   if (f)
     for (size_t i = 0; i < f->size(); ++i)
       if ((*f)[i] != 1.0) faces.push_back(int(i)), values.push_back((*f)[i]);
+  for (size_t i = 0; i < listed.faces.size(); ++i)
+    faces.push_back(listed.faces[i]), values.push_back(listed.values[i]);
   return {{"faces", faces}, {"values", values}};
 }
 
@@ -205,24 +208,20 @@ void parse_face_values(const json& j, const std::string& path, std::vector<int>&
     if (values[i] <= 0.0) fail(at(path, "values[" + std::to_string(i) + "]"), "must be positive");
 }
 
-// Faces go into arrays of unknown size here; validate_session checks them against the mesh.
-// The array reaches the largest face listed, so that face is checked against kMaxSessionFaces
-// first: [2147483647] overflowed and segfaulted, [2000000000] allocated 16 GB.
-FaceFactors sparse_to_array(const std::vector<int>& faces, const std::vector<double>& values,
-                            const std::string& path) {
-  if (faces.empty()) return nullptr;
-  size_t n = 0;
+// The mesh is not known here: the faces stay a list, which initial_state checks against the
+// mesh before making it an array (a face of 16,777,215 allocated 134 MB before the check). Far
+// beyond any mesh a session may have is an error at once.
+ListedFactors listed_factors(std::vector<int> faces, std::vector<double> values,
+                             const std::string& path) {
   for (size_t i = 0; i < faces.size(); ++i) {
+    const std::string where = path + ".faces[" + std::to_string(i) + "]";
+    if (faces[i] < 0) fail(where, "negative face index");
     if (faces[i] >= kMaxSessionFaces)
-      fail(path + ".faces[" + std::to_string(i) + "]",
-           "face " + std::to_string(faces[i]) + " is beyond the largest mesh a session may have (" +
-               std::to_string(kMaxSessionFaces) + " faces)");
-    n = std::max(n, size_t(faces[i]) + 1);
+      fail(where, "face " + std::to_string(faces[i]) +
+                      " is beyond the largest mesh a session may have (" +
+                      std::to_string(kMaxSessionFaces) + " faces)");
   }
-  auto a = std::make_shared<std::vector<double>>(n, 1.0);
-  for (size_t i = 0; i < faces.size(); ++i)
-    if (faces[i] >= 0) (*a)[size_t(faces[i])] = values[i];
-  return a;
+  return {std::move(faces), std::move(values)};
 }
 
 const char* layer_name(FactorLayer l) { return l == FactorLayer::Height ? "height" : "width"; }
@@ -425,10 +424,8 @@ Session parse_session(const std::string& text, const std::string& source) {
       std::vector<int> faces;
       std::vector<double> values;
       parse_face_values(init[layer], p, faces, values);
-      for (size_t i = 0; i < faces.size(); ++i)
-        if (faces[i] < 0) fail(p + ".faces[" + std::to_string(i) + "]", "negative face index");
-      (layer[0] == 'h' ? s.initial.height_factor : s.initial.width_factor) =
-          sparse_to_array(faces, values, p);
+      (layer[0] == 'h' ? s.initial.listed_height : s.initial.listed_width) =
+          listed_factors(std::move(faces), std::move(values), p);
     }
   } catch (const Error& e) {
     throw Error(src + ": " + e.what());
@@ -502,10 +499,11 @@ std::string session_to_json(const Session& s, const std::string& session_path) {
   }
   json handles = json::array();
   for (const SessionHandle& g : s.initial.handles) handles.push_back(handle_json(g));
-  const json initial = {{"prisms", prisms_json(s.initial.prisms)},
-                        {"handles", handles},
-                        {"height_factors", sparse_factors(s.initial.height_factor)},
-                        {"width_factors", sparse_factors(s.initial.width_factor)}};
+  const json initial = {
+      {"prisms", prisms_json(s.initial.prisms)},
+      {"handles", handles},
+      {"height_factors", sparse_factors(s.initial.height_factor, s.initial.listed_height)},
+      {"width_factors", sparse_factors(s.initial.width_factor, s.initial.listed_width)}};
   const json solver = {{"max_iterations", s.solver.max_iterations},
                        {"tolerance", s.solver.tolerance},
                        {"method", method}};

@@ -56,6 +56,7 @@ Session map_session_to_mesh(const Session& session, const Mesh& coarse, const Me
     f = a;
   };
   Session s = session;
+  s.initial = initial_state(session, int(coarse.n_faces()));  // listed factors made arrays
   map_handles(s.initial.handles);
   map_factors(s.initial.height_factor);
   map_factors(s.initial.width_factor);

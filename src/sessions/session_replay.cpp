@@ -43,9 +43,7 @@ ReplayResult replay_session(const Session& session, const Mesh& mesh, const Repl
   validate_session(session, n_faces);  // throws naming the event; nothing solved yet
 
   ReplayResult r;
-  SessionState state = validate_session(
-      Session{session.source, session.mesh, session.mesh_path, session.solver, session.initial, {}},
-      n_faces);
+  SessionState state = initial_state(session, n_faces);
   std::unique_ptr<Deformer> d = build(mesh, state, nullptr);
   bool converged = false;
   size_t next = 0;

@@ -56,6 +56,9 @@ FaceFactors set_factors(const FaceFactors& old, int n_faces, const std::vector<i
   return a;
 }
 
+// How messages name a session: its file, or "session" for one made in memory.
+std::string source_name(const Session& s) { return s.source.empty() ? "session" : s.source; }
+
 }  // namespace
 
 const char* event_type_name(SessionEvent::Type type) {
@@ -107,21 +110,29 @@ void apply_event(SessionState& state, const SessionEvent& e, int n_faces) {
   }
 }
 
-SessionState validate_session(const Session& s, int n_faces) {
-  const std::string src = s.source.empty() ? "session" : s.source;
+SessionState initial_state(const Session& s, int n_faces) {
+  const std::string src = source_name(s);
   SessionState state = s.initial;
   try {
     check_handles(state.handles, n_faces, "initial.handles");
-    for (const FaceFactors* f : {&state.height_factor, &state.width_factor})
-      if (*f && int((*f)->size()) > n_faces)
+    const auto check = [&](FaceFactors& f, const ListedFactors& listed, const std::string& key) {
+      if (f && int(f->size()) > n_faces)
         fail("initial",
              "a painted face is out of range (the mesh has " + std::to_string(n_faces) + " faces)");
-    if (state.height_factor)
-      state.height_factor = set_factors(state.height_factor, n_faces, {}, {});
-    if (state.width_factor) state.width_factor = set_factors(state.width_factor, n_faces, {}, {});
+      check_faces(listed.faces, n_faces, key + ".faces", false);  // before any array is made
+      if (f || !listed.faces.empty()) f = set_factors(f, n_faces, listed.faces, listed.values);
+    };
+    check(state.height_factor, s.initial.listed_height, "initial.height_factors");
+    check(state.width_factor, s.initial.listed_width, "initial.width_factors");
   } catch (const Error& e) {
     throw Error(src + ": " + e.what());
   }
+  return state;
+}
+
+SessionState validate_session(const Session& s, int n_faces) {
+  const std::string src = source_name(s);
+  SessionState state = initial_state(s, n_faces);
   for (size_t i = 0; i < s.events.size(); ++i) {
     try {
       apply_event(state, s.events[i], n_faces);
