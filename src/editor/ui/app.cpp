@@ -1,15 +1,15 @@
 #include "app.h"
 
 #include <imgui.h>
-#include <imgui_internal.h>
 #include <imgui_impl_glfw.h>
 #include <imgui_impl_opengl3.h>
+#include <imgui_internal.h>
 
 #include <atomic>
 #include <chrono>
 #include <csignal>
-#include <cstdlib>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <optional>
@@ -83,8 +83,8 @@ void apply_style(float scale) {
 
 void load_font(float scale) {
   ImGuiIO& io = ImGui::GetIO();
-  for (const char* path : {"/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf",
-                           "/usr/share/fonts/TTF/DejaVuSans.ttf"}) {
+  for (const char* path :
+       {"/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf", "/usr/share/fonts/TTF/DejaVuSans.ttf"}) {
     if (std::filesystem::exists(path) && io.Fonts->AddFontFromFileTTF(path, 15.0f * scale)) return;
   }
   ImFontConfig config;
@@ -141,7 +141,7 @@ class App : public ScriptHost {
   bool buttons_[3] = {false, false, false};
   bool just_pressed_[3] = {false, false, false};
   const MeshTopology* shown_topology_ = nullptr;
-  const ProxyTriangles* shown_proxy_ = nullptr;  // null until the document's proxy is built
+  const ProxyTriangles* shown_proxy_ = nullptr;       // null until the document's proxy is built
   std::optional<ModelOrientation> grid_orientation_;  // of the ground grid drawn (none yet)
   int settled_frames_ = 0;
   bool screenshot_run_ = false;
@@ -168,9 +168,8 @@ void App::install_callbacks() {
     e.scancode = scancode;
     of(w).queue_.push_back(e);
   });
-  glfwSetCharCallback(window_, [](GLFWwindow* w, unsigned c) {
-    of(w).queue_.push_back(InputEvent::character(c));
-  });
+  glfwSetCharCallback(
+      window_, [](GLFWwindow* w, unsigned c) { of(w).queue_.push_back(InputEvent::character(c)); });
   glfwSetDropCallback(window_, [](GLFWwindow* w, int count, const char** paths) {
     of(w).queue_.push_back(InputEvent::drop(std::vector<std::string>(paths, paths + count)));
   });
@@ -186,23 +185,31 @@ void App::feed_imgui() {
       case InputEvent::Type::Key:
         ImGui_ImplGlfw_KeyCallback(window_, e.key, e.scancode, e.action, e.mods);
         break;
-      case InputEvent::Type::Char: ImGui_ImplGlfw_CharCallback(window_, e.codepoint); break;
-      case InputEvent::Type::Scroll: ImGui_ImplGlfw_ScrollCallback(window_, e.x, e.y); break;
+      case InputEvent::Type::Char:
+        ImGui_ImplGlfw_CharCallback(window_, e.codepoint);
+        break;
+      case InputEvent::Type::Scroll:
+        ImGui_ImplGlfw_ScrollCallback(window_, e.x, e.y);
+        break;
       case InputEvent::Type::MouseButton:
         if (e.button >= 0 && e.button < 3) {
           buttons_[e.button] = e.action == GLFW_PRESS;
           if (e.action == GLFW_PRESS) just_pressed_[e.button] = true;
         }
         break;
-      case InputEvent::Type::CursorMove: cursor_ = {e.x, e.y}; break;
-      case InputEvent::Type::Drop: break;
+      case InputEvent::Type::CursorMove:
+        cursor_ = {e.x, e.y};
+        break;
+      case InputEvent::Type::Drop:
+        break;
     }
   }
 }
 
 void App::locate(const ScriptCommand& c, double& x, double& y) {
   if (c.anchor == ScriptCommand::Anchor::Handle) {
-    if (!editor_.handle_window_position(c.handle, x, y)) throw Error("no handle named '" + c.handle + "'");
+    if (!editor_.handle_window_position(c.handle, x, y))
+      throw Error("no handle named '" + c.handle + "'");
   } else if (c.anchor == ScriptCommand::Anchor::Center) {
     const ViewportRect& vp = editor_.viewport();
     x = vp.x + vp.width * 0.5;
@@ -234,21 +241,34 @@ void App::run(const ScriptCommand& c) {
         editor_.update(0.0);
       }
       break;
-    case K::SaveScenario: editor_.save_scenario(c.text); break;
+    case K::SaveScenario:
+      editor_.save_scenario(c.text);
+      break;
     case K::Screenshot:
       ui_.screenshot_path = c.text;
       ui_.screenshot_with_ui = c.with_ui;
       break;
-    case K::Echo: std::printf("%s\n", c.text.c_str()); break;
-    case K::RecordStart: editor_.sessions.start_recording(editor_); break;
-    case K::RecordStop: editor_.sessions.stop_recording(editor_); break;
-    case K::SaveSession: editor_.sessions.save(editor_, c.text); break;
+    case K::Echo:
+      std::printf("%s\n", c.text.c_str());
+      break;
+    case K::RecordStart:
+      editor_.sessions.start_recording(editor_);
+      break;
+    case K::RecordStop:
+      editor_.sessions.stop_recording(editor_);
+      break;
+    case K::SaveSession:
+      editor_.sessions.save(editor_, c.text);
+      break;
     case K::PlaySession:
       editor_.sessions.open_playback(editor_, c.text);
       editor_.sessions.play(editor_);
       break;
-    case K::Quit: quit_ = true; break;
-    default: break;
+    case K::Quit:
+      quit_ = true;
+      break;
+    default:
+      break;
   }
   if (editor_.error_count() != errors_before) throw Error(editor_.messages().back().text);
 }
@@ -269,7 +289,8 @@ void App::sync_renderer() {
     grid_orientation_.reset();
   }
   if (!grid_orientation_ || !(*grid_orientation_ == doc->state.orientation)) {
-    renderer_->set_ground_grid(make_ground_grid(doc->topology->rest_points, doc->state.orientation));
+    renderer_->set_ground_grid(
+        make_ground_grid(doc->topology->rest_points, doc->state.orientation));
     grid_orientation_ = doc->state.orientation;
   }
   if (!shown_proxy_) {
@@ -315,7 +336,8 @@ void App::take_screenshot(const ViewportRect& vp, int fb_width, int fb_height, b
     if (whole_window) {
       save_screenshot(ui_.screenshot_path, 0, 0, fb_width, fb_height);
     } else {
-      const int x = int(vp.x * vp.scale), w = int(vp.width * vp.scale), h = int(vp.height * vp.scale);
+      const int x = int(vp.x * vp.scale), w = int(vp.width * vp.scale),
+                h = int(vp.height * vp.scale);
       const int y = fb_height - int(vp.y * vp.scale) - h;
       save_screenshot(ui_.screenshot_path, x, y, w, h);
     }
@@ -404,7 +426,8 @@ void App::frame(double now, double dt) {
     }
   }
   errors_seen_ = editor_.error_count();
-  if (!ui_.screenshot_path.empty() && !ui_.screenshot_with_ui) take_screenshot(vp, fb_w, fb_h, false);
+  if (!ui_.screenshot_path.empty() && !ui_.screenshot_with_ui)
+    take_screenshot(vp, fb_w, fb_h, false);
   ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
   if (!ui_.screenshot_path.empty()) take_screenshot(vp, fb_w, fb_h, true);
   glfwSwapBuffers(window_);
