@@ -258,6 +258,10 @@ TEST(HostileScripts, DurationsMustBeFiniteAndBounded) {
                   "s.txt:2: expected a finite");
   expect_contains(error_of([] { parse_script("wait -1\n", "s.txt"); }), "from 0 to 86400");
   expect_contains(error_of([] { parse_script("wait-settled 1e9\n", "s.txt"); }), "from 0 to 86400");
+  expect_contains(error_of([] { parse_script("wait 1e300\n", "s.txt"); }),
+                  "s.txt:1: expected seconds");
+  expect_contains(error_of([] { parse_script("\nwait-file f.txt inf\n", "s.txt"); }),
+                  "s.txt:2: expected a finite number, got 'inf'");
   expect_contains(error_of([] { parse_script("\x1b[2Jboom\n", "s.txt"); }),
                   "unknown command '\\x1B[2Jboom'");
 }

@@ -25,6 +25,7 @@
 // Input commands emit at most one event per frame, as a person would; the others run at once,
 // except that a screenshot ends the frame (it is taken when the frame is drawn).
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -102,6 +103,10 @@ class ScriptPlayer {
   bool finished() const { return next_ >= commands_.size() || failed_; }
   bool failed() const { return failed_; }
   const std::string& error() const { return error_; }
+  // The script line of the command under way (the last one once finished; 0 when empty).
+  int line() const {
+    return commands_.empty() ? 0 : commands_[std::min(next_, commands_.size() - 1)].line;
+  }
 
  private:
   bool step(double now, ScriptHost& host);  // true: command finished, go on this frame

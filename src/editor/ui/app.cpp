@@ -6,6 +6,7 @@
 #include <imgui_internal.h>
 
 #include <atomic>
+#include <cctype>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
@@ -16,6 +17,7 @@
 #include <sstream>
 #include <thread>
 
+#include "autosave.h"
 #include "editor.h"
 #include "face_colors.h"
 #include "gl.h"
@@ -25,6 +27,7 @@
 #include "preferences_window.h"
 #include "primo/error.h"
 #include "renderer.h"
+#include "run_deadline.h"
 #include "screenshot.h"
 #include "script.h"
 
@@ -129,9 +132,17 @@ class App : public ScriptHost {
   void sync_renderer();
   void take_screenshot(const ViewportRect& vp, int fb_width, int fb_height, bool with_ui_drawn);
   void fail(const std::string& message);
+  void stop_at_timeout();
+  std::string busy_or_unsettled() const;
+  std::string autosave_unsaved_work();
+  bool out_of_time() const { return deadline_ && deadline_->expired(); }
+  void finish_file_task();
 
   EditorOptions options_;
   GLFWwindow* window_;
+  // Scripted and --screenshot runs only. Before the editor, so that its watchdog still runs
+  // while the editor shuts down (which waits for an open or save under way).
+  std::unique_ptr<RunDeadline> deadline_;
   Editor editor_;
   UiState ui_;
   std::unique_ptr<MeshRenderer> renderer_;
@@ -145,7 +156,6 @@ class App : public ScriptHost {
   std::optional<ModelOrientation> grid_orientation_;  // of the ground grid drawn (none yet)
   int settled_frames_ = 0;
   bool screenshot_run_ = false;
-  double start_ = 0.0;
   size_t errors_seen_ = 0;
   std::string shown_title_;
   bool quit_ = false;
@@ -228,18 +238,12 @@ void App::run(const ScriptCommand& c) {
     case K::Open:
       // As a person would, a script opens the next file once the last open or save is done
       // (the editor refuses a second file task); the solver may still be busy.
-      while (editor_.file_task_running()) {
-        std::this_thread::sleep_for(std::chrono::milliseconds(5));
-        editor_.update(0.0);
-      }
+      finish_file_task();
       editor_.open(c.text);
       break;
     case K::SaveMesh:
       editor_.save_mesh(c.text);
-      while (editor_.file_task_running()) {  // a script goes on once the file is there
-        std::this_thread::sleep_for(std::chrono::milliseconds(5));
-        editor_.update(0.0);
-      }
+      finish_file_task();  // a script goes on once the file is there
       break;
     case K::SaveScenario:
       editor_.save_scenario(c.text);
@@ -277,6 +281,44 @@ void App::fail(const std::string& message) {
   std::fprintf(stderr, "primo edit: error: %s\n", message.c_str());
   exit_code_ = 1;
   quit_ = true;
+}
+
+// Waits for the open or save under way; throws when the --timeout runs out first (frame()
+// then reports the timeout, not this).
+void App::finish_file_task() {
+  while (editor_.file_task_running()) {
+    if (out_of_time()) throw Error("still busy with " + editor_.file_task_label());
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    editor_.update(0.0);
+  }
+}
+
+// What SIGTERM does too: the work is kept for recovery at the next start (autosave.h).
+// Returns how the message goes on: where the work went, or that it could not be kept.
+std::string App::autosave_unsaved_work() {
+  if (!editor_.has_unsaved_changes()) return "";
+  if (!editor_.autosave_now()) return "; the unsaved work could not be autosaved";
+  return "; the unsaved work is autosaved to " + autosave_path(editor_.document()->mesh_path);
+}
+
+// Why a --screenshot run is not done: the input is still loading (a huge file, or a pipe that
+// never ends), or its solve has not settled.
+std::string App::busy_or_unsettled() const {
+  if (!editor_.file_task_running()) return "the solve did not settle";
+  std::string label = editor_.file_task_label();  // "Opening bar.obj"
+  if (!label.empty()) label[0] = char(std::tolower(static_cast<unsigned char>(label[0])));
+  return "still " + label;
+}
+
+// One line naming what ran out of time (the script and its line, or the input whose solve did
+// not settle), exit status 1, and the unsaved work autosaved.
+void App::stop_at_timeout() {
+  const std::string what =
+      script_ ? options_.script + ":" + std::to_string(script_->line()) +
+                    ": the script did not finish within the --timeout of " + deadline_->shown()
+              : options_.input + ": " + busy_or_unsettled() + " within the --timeout of " +
+                    deadline_->shown() + " (nothing was written)";
+  fail(what + autosave_unsaved_work());
 }
 
 void App::sync_renderer() {
@@ -352,7 +394,7 @@ void App::take_screenshot(const ViewportRect& vp, int fb_width, int fb_height, b
 void App::frame(double now, double dt) {
   if (script_ && !script_->finished()) {
     script_->update(now, *this);
-    if (script_->failed()) fail(script_->error());
+    if (script_->failed()) out_of_time() ? stop_at_timeout() : fail(script_->error());
   }
   feed_imgui();
   ImGui_ImplOpenGL3_NewFrame();
@@ -421,8 +463,6 @@ void App::frame(double now, double dt) {
       ui_.screenshot_path = options_.screenshot;
       ui_.screenshot_with_ui = options_.screenshot_ui;
       quit_ = true;
-    } else if (now - start_ > options_.timeout) {
-      fail("the solve did not settle within " + std::to_string(int(options_.timeout)) + " s");
     }
   }
   errors_seen_ = editor_.error_count();
@@ -470,13 +510,16 @@ int App::run() {
   if (screenshot_run_ && !options_.screenshot_ui) ui_.show_panels = false;
   // Scripted and screenshot runs are automation: no recovery prompt in their way.
   if (script_ || screenshot_run_) ui_.recovery_checked = true;
+  // Automation must end: a script may wait, a solve may never settle (docs/editor.md).
+  if (script_ || screenshot_run_)
+    deadline_ =
+        std::make_unique<RunDeadline>(options_.timeout, script_ ? options_.script : options_.input);
   if (!options_.input.empty()) editor_.open(options_.input);
 
   double last = glfwGetTime();
-  start_ = last;
   for (;;) {
     if (g_termination_requested) {
-      if (editor_.has_unsaved_changes()) editor_.autosave_now();
+      autosave_unsaved_work();
       break;
     }
     // The window's close button asks first when there is unsaved work.
@@ -485,6 +528,10 @@ int App::run() {
       glfwSetWindowShouldClose(window_, GLFW_FALSE);
     }
     if (quit_) break;
+    if (out_of_time()) {
+      stop_at_timeout();
+      break;
+    }
     const bool animate = editor_.solver_status().busy() || editor_.file_task_running() || script_ ||
                          screenshot_run_ || editor_.gesture() != Editor::Gesture::None ||
                          editor_.camera().update(0.0) || renderer_->drew_proxy();
