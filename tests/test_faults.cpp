@@ -178,6 +178,39 @@ TEST_F(Faults, FullDiskMidWrite) {
   EXPECT_EQ((std::vector<std::string>{"cube.obj", "existing.obj", "s.json"}), entries(dir));
 }
 
+TEST_F(Faults, ARenameFailingHalfWayPutsTheEarlierTargetsBack) {
+  // Three staged files; the third's target became a folder after staging, so its rename fails
+  // once the first two are in place: the replaced one gets its old bytes back, the new one goes.
+  std::string message;
+  try {
+    primo::StagedOutputs out;
+    out.stage(dir + "/existing.obj", "new mesh");
+    out.stage(dir + "/new.json", "{}");
+    out.stage(dir + "/later.json", "{}");
+    fs::create_directory(dir + "/later.json");
+    out.commit();
+  } catch (const primo::Error& e) {
+    message = e.what();
+  }
+  EXPECT_NE(std::string::npos, message.find(dir + "/later.json: cannot save")) << message;
+  EXPECT_NE(std::string::npos, message.find("nothing was written: " + dir + "/new.json, " + dir +
+                                            "/existing.obj put back as it was"))
+      << message;
+  EXPECT_EQ("keep me", read_text(dir + "/existing.obj"));
+  EXPECT_TRUE(fs::is_directory(dir + "/later.json"));
+  EXPECT_EQ((std::vector<std::string>{"cube.obj", "existing.obj", "later.json", "s.json"}),
+            entries(dir));
+  // A commit that succeeds leaves no backup behind.
+  fs::remove(dir + "/later.json");
+  primo::StagedOutputs out;
+  out.stage(dir + "/existing.obj", "new mesh");
+  out.stage(dir + "/new.json", "{}");
+  out.commit();
+  EXPECT_EQ("new mesh", read_text(dir + "/existing.obj"));
+  EXPECT_EQ((std::vector<std::string>{"cube.obj", "existing.obj", "new.json", "s.json"}),
+            entries(dir));
+}
+
 TEST_F(Faults, SigkillDuringALargeWrite) {
   // A 1M-quad cylinder (88 MB of OBJ) killed while its partial file grows: the old file stays,
   // the partial is clearly named, and the next write to the target removes it.

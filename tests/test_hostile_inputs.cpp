@@ -80,6 +80,38 @@ TEST(HostileSessions, HugeInitialFactorFacesAreErrorsNotCrashes) {
   }
 }
 
+TEST(HostileSessions, InitialFactorFacesMeetTheMeshBeforeAnyArrayIsMade) {
+  // Face 16,777,215 is within the session limit but not on the 168-face bar: reading keeps the
+  // list (an array up to that face was 134 MB), and the check against the mesh names the key.
+  const SessionText s = bar_session();
+  const std::string face = std::to_string(kMaxSessionFaces - 1);
+  const std::string bad =
+      replaced(s.text, "\"width_factors\":{\"faces\":[],\"values\":[]",
+               "\"width_factors\":{\"faces\":[3," + face + "],\"values\":[2,0.5]");
+  const Session session = parse_session(bad, s.dir + "/big.session.json");
+  EXPECT_EQ(nullptr, session.initial.width_factor);
+  EXPECT_EQ(2u, session.initial.listed_width.faces.size());
+  const Mesh mesh = load_mesh(s.dir + "/bar.obj");
+  const std::string expected = s.dir + "/big.session.json: initial.width_factors.faces[1]: face " +
+                               face + " out of range (the mesh has " +
+                               std::to_string(mesh.n_faces()) + " faces)";
+  EXPECT_EQ(expected, error_of([&] { validate_session(session, int(mesh.n_faces())); }));
+  EXPECT_EQ(expected, error_of([&] { replay_session(session, mesh); }));
+  // Written again without meeting the mesh, the list is kept as it was read.
+  expect_contains(session_to_json(session, s.dir + "/big.session.json"),
+                  "\"width_factors\":{\"faces\":[3," + face + "],\"values\":[2.0,0.5]}");
+  // Faces on the mesh become the array once the mesh is known.
+  const Session good =
+      parse_session(replaced(s.text, "\"width_factors\":{\"faces\":[],\"values\":[]",
+                             "\"width_factors\":{\"faces\":[3],\"values\":[2]"),
+                    "good.session.json");
+  const SessionState state = initial_state(good, int(mesh.n_faces()));
+  ASSERT_NE(nullptr, state.width_factor);
+  EXPECT_EQ(mesh.n_faces(), state.width_factor->size());
+  EXPECT_EQ(2.0, (*state.width_factor)[3]);
+  EXPECT_EQ(1.0, (*state.width_factor)[4]);
+}
+
 TEST(HostileSessions, FramesBeyondTheLimitAreErrors) {
   const SessionText s = bar_session();
   const size_t last = s.text.rfind("\"frame\":");
@@ -226,6 +258,10 @@ TEST(HostileScripts, DurationsMustBeFiniteAndBounded) {
                   "s.txt:2: expected a finite");
   expect_contains(error_of([] { parse_script("wait -1\n", "s.txt"); }), "from 0 to 86400");
   expect_contains(error_of([] { parse_script("wait-settled 1e9\n", "s.txt"); }), "from 0 to 86400");
+  expect_contains(error_of([] { parse_script("wait 1e300\n", "s.txt"); }),
+                  "s.txt:1: expected seconds");
+  expect_contains(error_of([] { parse_script("\nwait-file f.txt inf\n", "s.txt"); }),
+                  "s.txt:2: expected a finite number, got 'inf'");
   expect_contains(error_of([] { parse_script("\x1b[2Jboom\n", "s.txt"); }),
                   "unknown command '\\x1B[2Jboom'");
 }

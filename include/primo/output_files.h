@@ -7,8 +7,10 @@
 // ".<name>.primo-partial-<pid>-<n><ext>", flushed to disk, and only then renamed over the
 // target. A command that writes several files (`deform -o OUT --stats STATS`) stages them all
 // and renames them only when every one is complete, so either all results are new or all
-// targets are as they were. A process killed while staging leaves its temporary file; the next
-// write to the same target removes the temporaries of processes that no longer run.
+// targets are as they were; should a rename fail after others succeeded, the earlier targets
+// are put back from hard links kept during the commit (".<name>.primo-backup-<pid>-<n><ext>").
+// A process killed while staging leaves its temporary file; the next write to the same target
+// removes the temporaries and backups of processes that no longer run.
 
 #include <string>
 #include <utility>
@@ -50,10 +52,18 @@ class StagedOutputs {
   // or read-only folder, full disk, special file at the target).
   void stage(const std::string& path, const std::string& bytes);
   void stage_mesh(const std::string& path, const Mesh& mesh);
-  // Renames every staged file into place, in the order staged.
+  // Renames every staged file into place, in the order staged. When a rename fails, the
+  // targets already replaced are put back (each existing target is kept under a second name,
+  // a hard link, until every rename succeeded) and the error says so; a target that could not
+  // be put back is named with where its earlier version is.
   void commit();
 
  private:
+  static std::string hidden_prefix(const std::string& path, const char* kind);
+  static std::string hidden_name(const std::string& path, const std::string& prefix);
+  std::vector<std::string> back_up_targets() const;  // "" where a target does not exist
+  std::string roll_back(size_t renamed, const std::vector<std::string>& backups);
+
   std::vector<std::pair<std::string, std::string>> staged_;  // temporary file, target
 };
 

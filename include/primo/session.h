@@ -26,8 +26,8 @@ inline constexpr const char* kSessionFormat = "primo-session/1";
 
 // Limits of what a session file may claim, checked when it is read (docs/sessions.md): the
 // last frame (10,000,000: 46 hours at 60 frames a second; the frame count stays far from
-// INT_MAX) and the largest face index of the initial painted factors (made into an array
-// before the mesh is known).
+// INT_MAX) and the largest face index of the initial painted factors (a first check before the
+// mesh is known; initial_state checks them against the mesh).
 inline constexpr int kMaxSessionFrame = 10000000;
 inline constexpr int kMaxSessionFaces = 1 << 24;
 
@@ -44,10 +44,10 @@ struct SessionTarget {
 struct SessionEvent {
   enum class Type { Handles, Targets, Factors, Prisms, Undo, Redo };
   Type type = Type::Handles;
-  double t = 0.0;  // seconds since the recording started
-  int frame = 0;   // editor frame since the recording started
-  std::vector<SessionHandle> handles;  // Handles: the whole list afterwards
-  std::vector<SessionTarget> poses;    // Targets: the handles whose pose changed
+  double t = 0.0;                           // seconds since the recording started
+  int frame = 0;                            // editor frame since the recording started
+  std::vector<SessionHandle> handles;       // Handles: the whole list afterwards
+  std::vector<SessionTarget> poses;         // Targets: the handles whose pose changed
   FactorLayer layer = FactorLayer::Height;  // Factors
   std::vector<int> faces;                   // Factors: faces whose factor changed...
   std::vector<double> values;               // ...and their new values
@@ -55,12 +55,29 @@ struct SessionEvent {
 };
 const char* event_type_name(SessionEvent::Type type);
 
+// Painted factors as a session file lists them: faces and their values (a later entry of a
+// face wins).
+struct ListedFactors {
+  std::vector<int> faces;
+  std::vector<double> values;
+};
+
+// The state a session starts from. The initial painted factors of a file stay listed here
+// until the session meets its mesh (initial_state, validate_session): only with the mesh's face
+// count known are they made into per-face arrays, so that a file naming face 16,777,215 of a
+// 168-face mesh is an error before anything is allocated for it. A SessionState converts to
+// this (with nothing listed); for the state itself use initial_state, not a copy of the base.
+struct SessionStart : SessionState {
+  SessionStart(SessionState state = {}) : SessionState(std::move(state)) {}  // NOLINT: implicit
+  ListedFactors listed_height, listed_width;
+};
+
 struct Session {
   std::string source;     // the session file ("" when built in memory)
   std::string mesh;       // as written in the file (relative to its folder)
   std::string mesh_path;  // resolved
   SolverSpec solver;      // the recording's solver settings (settle tolerance, method)
-  SessionState initial;   // handles, prisms and factors at the start
+  SessionStart initial;   // handles, prisms and factors at the start
   std::vector<SessionEvent> events;
   int frames() const { return events.empty() ? 0 : events.back().frame + 1; }
   double duration() const { return events.empty() ? 0.0 : events.back().t; }
@@ -78,6 +95,9 @@ void save_session(const Session& session, const std::string& path);
 // Applies one event. Throws primo::Error (without location) when it does not fit the state or
 // a mesh of `n_faces` faces.
 void apply_event(SessionState& state, const SessionEvent& event, int n_faces);
+// `session.initial` checked against a mesh of `n_faces` faces, its listed factors made into
+// arrays. Throws primo::Error "<source>: initial.<key>: ..." when a face is out of range.
+SessionState initial_state(const Session& session, int n_faces);
 // Applies everything from `session.initial` on a mesh of `n_faces`: throws primo::Error
 // "<source>: events[i] (type): ..." at the first event that does not fit. Returns the final
 // state.

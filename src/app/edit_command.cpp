@@ -1,7 +1,9 @@
-// `primo edit [MESH_OR_SCENARIO] [--screenshot OUT.png] [--script FILE]`, and `primo` with no
-// arguments: the interactive editor (docs/editor.md).
+// `primo edit [MESH_OR_SCENARIO] [--screenshot OUT.png] [--script FILE] [--timeout SECONDS]`, and
+// `primo` with no arguments: the interactive editor (docs/editor.md).
 
 #include <CLI/CLI.hpp>
+#include <cmath>
+#include <cstdlib>
 #include <memory>
 
 #include "app.h"
@@ -9,6 +11,22 @@
 #include "paths.h"
 
 namespace primo::app {
+namespace {
+
+// More than 0 and at most a day, as a script's waits. CLI11's ranges let "nan" through, and a
+// timeout of nan or 1e300 would never run out.
+const CLI::Validator kTimeoutSeconds(
+    [](std::string& text) -> std::string {
+      char* end = nullptr;
+      const double seconds = std::strtod(text.c_str(), &end);
+      if (end == text.c_str() || *end != '\0' || !std::isfinite(seconds) || seconds <= 0.0 ||
+          seconds > 86400.0)
+        return "expected seconds, more than 0 and at most 86400, got " + text;
+      return "";
+    },
+    "SECONDS");
+
+}  // namespace
 
 Command register_edit(CLI::App& app) {
   auto options = std::make_shared<editor::EditorOptions>();
@@ -25,8 +43,10 @@ Command register_edit(CLI::App& app) {
       ->check(CLI::ExistingFile);
   cmd->add_option("--width", options->width, "Window width")->check(CLI::Range(320, 8192));
   cmd->add_option("--height", options->height, "Window height")->check(CLI::Range(240, 8192));
-  cmd->add_option("--timeout", options->timeout, "Seconds a --screenshot run may take")
-      ->check(CLI::PositiveNumber);
+  cmd->add_option("--timeout", options->timeout,
+                  "Seconds a --screenshot or --script run may take (default 300): then exit 1, "
+                  "unsaved work autosaved")
+      ->check(kTimeoutSeconds);
   return {cmd, [options] {
             editor::EditorOptions o = *options;
             if (o.input.empty()) o.input = editor::default_mesh_path();

@@ -56,6 +56,14 @@ int write_whole_file(const std::string& file, const std::string& bytes) {
   return error;
 }
 
+// Removes files[from...], skipping empty names; ignores every error.
+void remove_quietly(const std::vector<std::string>& files, size_t from = 0) {
+  for (size_t i = from; i < files.size(); ++i) {
+    std::error_code ignored;
+    if (!files[i].empty()) fs::remove(files[i], ignored);
+  }
+}
+
 }  // namespace
 
 void check_output_path(const std::string& path) {
@@ -123,18 +131,28 @@ StagedOutputs::~StagedOutputs() {
   }
 }
 
+// ".<name>.primo-<kind>-" beside `path`: hidden, clearly PriMo's, and short enough that the
+// whole name stays within the file system's limit.
+std::string StagedOutputs::hidden_prefix(const std::string& path, const char* kind) {
+  return "." + fs::path(path).filename().string().substr(0, 100) + ".primo-" + kind + "-";
+}
+
+// "<folder>/<prefix><pid>-<n><ext>": unique within this process and among live processes.
+std::string StagedOutputs::hidden_name(const std::string& path, const std::string& prefix) {
+  static std::atomic<unsigned> counter{0};
+  return (folder_of(path) / (prefix + std::to_string(::getpid()) + "-" + std::to_string(counter++) +
+                             extension_of(path)))
+      .string();
+}
+
 void StagedOutputs::stage(const std::string& path, const std::string& bytes) {
   check_output_path(path);
-  const fs::path folder = folder_of(path);
-  const std::string name = fs::path(path).filename().string();
-  // Hidden, unique, clearly a partial file of PriMo's, and ending in the real extension; the
-  // name part is shortened so that the temporary name stays within the file system's limit.
-  const std::string prefix = "." + name.substr(0, 100) + ".primo-partial-";
-  remove_stale_partials(folder.string(), prefix);
-  static std::atomic<unsigned> counter{0};
-  const std::string temp = (folder / (prefix + std::to_string(::getpid()) + "-" +
-                                      std::to_string(counter++) + extension_of(path)))
-                               .string();
+  const std::string folder = folder_of(path).string();
+  // Ending in the real extension, so that a left-over partial still opens as what it is.
+  const std::string prefix = hidden_prefix(path, "partial");
+  remove_stale_partials(folder, prefix);
+  remove_stale_partials(folder, hidden_prefix(path, "backup"));
+  const std::string temp = hidden_name(path, prefix);
   const int error = write_whole_file(temp, bytes);
   if (error != 0) {
     std::error_code ignored;
@@ -148,18 +166,63 @@ void StagedOutputs::stage_mesh(const std::string& path, const Mesh& mesh) {
   stage(path, mesh_file_bytes(mesh, path));
 }
 
+// A second name for each existing target (a hard link: no copy, and restoring it is one
+// atomic rename), so that a rename failing half-way through can put the earlier targets back.
+// Throws before any target changed when a backup cannot be made.
+std::vector<std::string> StagedOutputs::back_up_targets() const {
+  std::vector<std::string> backups;
+  for (const auto& staged : staged_) {
+    const std::string& target = staged.second;
+    std::string backup;  // none for a missing target (a rollback removes what the commit made)
+    std::error_code ec;  // and none for a folder, which no file can be renamed onto
+    const fs::file_status status = fs::symlink_status(target, ec);
+    if (fs::exists(status) && !fs::is_directory(status)) {
+      backup = hidden_name(target, hidden_prefix(target, "backup"));
+      // A copy where the file system has no hard links.
+      if (::link(target.c_str(), backup.c_str()) != 0 && !fs::copy_file(target, backup, ec)) {
+        remove_quietly(backups);
+        throw Error(target + ": cannot save: cannot keep a copy of the existing file (" +
+                    ec.message() + "); nothing was written");
+      }
+    }
+    backups.push_back(backup);
+  }
+  return backups;
+}
+
 void StagedOutputs::commit() {
+  const std::vector<std::string> backups = back_up_targets();
   for (size_t i = 0; i < staged_.size(); ++i) {
     const auto& [temp, target] = staged_[i];
     if (std::rename(temp.c_str(), target.c_str()) != 0) {
       const int error = errno;
-      std::string done;
-      for (size_t j = 0; j < i; ++j) done += (done.empty() ? "" : ", ") + staged_[j].second;
       throw Error(target + ": cannot save: cannot move the temporary file into place: " +
-                  std::strerror(error) + (done.empty() ? "" : " (already written: " + done + ")"));
+                  std::strerror(error) + roll_back(i, backups));
     }
   }
+  remove_quietly(backups);
   staged_.clear();
+}
+
+// Puts the first `renamed` targets back as they were before commit(); returns the end of the
+// error message: what was restored, or where the earlier file is when it could not be.
+std::string StagedOutputs::roll_back(size_t renamed, const std::vector<std::string>& backups) {
+  std::string restored, lost;
+  for (size_t j = renamed; j-- > 0;) {
+    const std::string& target = staged_[j].second;
+    std::error_code ec;
+    const bool ok = backups[j].empty() ? fs::remove(target, ec) || !ec
+                                       : std::rename(backups[j].c_str(), target.c_str()) == 0;
+    if (ok)
+      restored += (restored.empty() ? "" : ", ") + target;
+    else
+      lost += "; " + target + " could not be put back: " +
+              (backups[j].empty() ? "it is new" : "its earlier version is " + backups[j]);
+  }
+  remove_quietly(backups, renamed);
+  if (!lost.empty()) return lost;
+  return restored.empty() ? " (nothing was written)"
+                          : " (nothing was written: " + restored + " put back as it was)";
 }
 
 void write_text_atomically(const std::string& path, const std::string& text) {

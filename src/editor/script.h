@@ -25,6 +25,7 @@
 // Input commands emit at most one event per frame, as a person would; the others run at once,
 // except that a screenshot ends the frame (it is taken when the frame is drawn).
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -34,9 +35,29 @@ namespace primo::editor {
 
 struct ScriptCommand {
   enum class Kind {
-    Wait, WaitSettled, Move, Press, Release, Click, Scroll, Key, Hold, Unhold, Type,
-    Open, SaveMesh, SaveScenario, Screenshot, Echo, Report, WaitFile, Quit,
-    RecordStart, RecordStop, SaveSession, PlaySession
+    Wait,
+    WaitSettled,
+    Move,
+    Press,
+    Release,
+    Click,
+    Scroll,
+    Key,
+    Hold,
+    Unhold,
+    Type,
+    Open,
+    SaveMesh,
+    SaveScenario,
+    Screenshot,
+    Echo,
+    Report,
+    WaitFile,
+    Quit,
+    RecordStart,
+    RecordStop,
+    SaveSession,
+    PlaySession
   };
   Kind kind = Kind::Wait;
   int line = 0;
@@ -46,11 +67,11 @@ struct ScriptCommand {
   enum class Anchor { None, Handle, Center } anchor = Anchor::None;
   std::string handle;
   double x = 0.0, y = 0.0;
-  int button = 0;   // Press, Release, Click
-  int key = 0;      // Key, Hold, Unhold
-  int mods = 0;     // Key
-  double steps = 0.0;  // Scroll
-  std::string text;    // Type, Echo, paths
+  int button = 0;        // Press, Release, Click
+  int key = 0;           // Key, Hold, Unhold
+  int mods = 0;          // Key
+  double steps = 0.0;    // Scroll
+  std::string text;      // Type, Echo, paths
   bool with_ui = false;  // Screenshot
 };
 
@@ -82,19 +103,26 @@ class ScriptPlayer {
   bool finished() const { return next_ >= commands_.size() || failed_; }
   bool failed() const { return failed_; }
   const std::string& error() const { return error_; }
+  // The script line of the command under way (the last one once finished; 0 when empty).
+  int line() const {
+    return commands_.empty() ? 0 : commands_[std::min(next_, commands_.size() - 1)].line;
+  }
 
  private:
   bool step(double now, ScriptHost& host);  // true: command finished, go on this frame
-  void emit(ScriptHost& host, const InputEvent& e) { host.push_input(e); emitted_ = true; }
+  void emit(ScriptHost& host, const InputEvent& e) {
+    host.push_input(e);
+    emitted_ = true;
+  }
 
   std::vector<ScriptCommand> commands_;
   size_t next_ = 0;
-  bool started_ = false;   // the current command has begun
+  bool started_ = false;  // the current command has begun
   double start_time_ = 0.0;
   double from_x_ = 0.0, from_y_ = 0.0, to_x_ = 0.0, to_y_ = 0.0;
-  int phase_ = 0;          // sub-step of multi-event commands
+  int phase_ = 0;  // sub-step of multi-event commands
   int held_mods_ = 0;
-  bool emitted_ = false;   // an input event went out this frame
+  bool emitted_ = false;  // an input event went out this frame
   bool failed_ = false;
   std::string error_;
 };

@@ -1,8 +1,6 @@
 // Reading and writing session files (docs/sessions.md, "The format"). Reading is strict and
 // every error names where it is; writing puts one event per line.
 
-#include "primo/session.h"
-
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -14,6 +12,7 @@
 #include "primo/error.h"
 #include "primo/json_limits.h"
 #include "primo/output_files.h"
+#include "primo/session.h"
 
 namespace primo {
 namespace {
@@ -76,7 +75,8 @@ std::vector<int> int_array(const json& j, const std::string& path) {
   if (!j.is_array()) fail(path, "expected an array of integers");
   std::vector<int> out;
   out.reserve(j.size());
-  for (size_t i = 0; i < j.size(); ++i) out.push_back(integer(j[i], path + "[" + std::to_string(i) + "]"));
+  for (size_t i = 0; i < j.size(); ++i)
+    out.push_back(integer(j[i], path + "[" + std::to_string(i) + "]"));
   return out;
 }
 
@@ -84,17 +84,23 @@ std::vector<double> number_array(const json& j, const std::string& path) {
   if (!j.is_array()) fail(path, "expected an array of numbers");
   std::vector<double> out;
   out.reserve(j.size());
-  for (size_t i = 0; i < j.size(); ++i) out.push_back(number(j[i], path + "[" + std::to_string(i) + "]"));
+  for (size_t i = 0; i < j.size(); ++i)
+    out.push_back(number(j[i], path + "[" + std::to_string(i) + "]"));
   return out;
 }
 
 const char* mode_name(SessionHandleMode m) {
   switch (m) {
-    case SessionHandleMode::Pose: return "pose";
-    case SessionHandleMode::Position: return "position";
-    case SessionHandleMode::Orientation: return "orientation";
-    case SessionHandleMode::Spring: return "spring";
-    case SessionHandleMode::Fixed: return "fixed";
+    case SessionHandleMode::Pose:
+      return "pose";
+    case SessionHandleMode::Position:
+      return "position";
+    case SessionHandleMode::Orientation:
+      return "orientation";
+    case SessionHandleMode::Spring:
+      return "spring";
+    case SessionHandleMode::Fixed:
+      return "fixed";
   }
   return "pose";
 }
@@ -102,9 +108,9 @@ const char* mode_name(SessionHandleMode m) {
 SessionHandleMode parse_mode(const json& j, const std::string& path) {
   if (j.is_string()) {
     const std::string s = j.get<std::string>();
-    for (SessionHandleMode m : {SessionHandleMode::Pose, SessionHandleMode::Position,
-                                SessionHandleMode::Orientation, SessionHandleMode::Spring,
-                                SessionHandleMode::Fixed})
+    for (SessionHandleMode m :
+         {SessionHandleMode::Pose, SessionHandleMode::Position, SessionHandleMode::Orientation,
+          SessionHandleMode::Spring, SessionHandleMode::Fixed})
       if (s == mode_name(m)) return m;
   }
   fail(path, "expected \"pose\", \"position\", \"orientation\", \"spring\" or \"fixed\"");
@@ -118,7 +124,7 @@ json pose_json(const SessionPose& p) {
 }
 
 json handle_json(const SessionHandle& g) {
-  json j = {{"name", g.name},     {"mode", mode_name(g.mode)}, {"faces", *g.faces},
+  json j = {{"name", g.name},           {"mode", mode_name(g.mode)},    {"faces", *g.faces},
             {"stiffness", g.stiffness}, {"center", vec_json(g.center)}, {"color", g.color}};
   j["translate"] = vec_json(g.pose.translate);
   j["rotation"] = quat_json(g.pose.rotation);
@@ -126,13 +132,15 @@ json handle_json(const SessionHandle& g) {
 }
 
 SessionHandle parse_handle(const json& j, const std::string& path) {
-  check_object(j, path, {"name", "mode", "faces", "stiffness", "center", "color", "translate", "rotation"});
+  check_object(j, path,
+               {"name", "mode", "faces", "stiffness", "center", "color", "translate", "rotation"});
   SessionHandle g;
   const json& name = member(j, path, "name");
   if (!name.is_string()) fail(at(path, "name"), "expected a string");
   g.name = name.get<std::string>();
   g.mode = parse_mode(member(j, path, "mode"), at(path, "mode"));
-  g.faces = std::make_shared<const std::vector<int>>(int_array(member(j, path, "faces"), at(path, "faces")));
+  g.faces = std::make_shared<const std::vector<int>>(
+      int_array(member(j, path, "faces"), at(path, "faces")));
   if (j.contains("stiffness")) {
     g.stiffness = number(j["stiffness"], at(path, "stiffness"));
     if (g.stiffness <= 0.0) fail(at(path, "stiffness"), "must be positive");
@@ -147,7 +155,8 @@ SessionHandle parse_handle(const json& j, const std::string& path) {
 std::vector<SessionHandle> parse_handles(const json& j, const std::string& path) {
   if (!j.is_array()) fail(path, "expected an array of handles");
   std::vector<SessionHandle> out;
-  for (size_t i = 0; i < j.size(); ++i) out.push_back(parse_handle(j[i], path + "[" + std::to_string(i) + "]"));
+  for (size_t i = 0; i < j.size(); ++i)
+    out.push_back(parse_handle(j[i], path + "[" + std::to_string(i) + "]"));
   return out;
 }
 
@@ -157,7 +166,8 @@ const char* height_key(HeightUnit unit) {
 }
 
 json prisms_json(const SessionPrisms& p) {
-  return {{height_key(p.height_unit), p.height}, {"width", p.width}, {"normal_blend", p.normal_blend}};
+  return {
+      {height_key(p.height_unit), p.height}, {"width", p.width}, {"normal_blend", p.normal_blend}};
 }
 
 SessionPrisms parse_prisms(const json& j, const std::string& path) {
@@ -177,12 +187,15 @@ SessionPrisms parse_prisms(const json& j, const std::string& path) {
   return p;
 }
 
-// Sparse factors: faces whose value is not 1.
-json sparse_factors(const FaceFactors& f) {
+// Sparse factors: faces whose value is not 1, then the listed ones not yet made into an array
+// (a session read and written again without meeting its mesh).
+json sparse_factors(const FaceFactors& f, const ListedFactors& listed) {
   json faces = json::array(), values = json::array();
   if (f)
     for (size_t i = 0; i < f->size(); ++i)
       if ((*f)[i] != 1.0) faces.push_back(int(i)), values.push_back((*f)[i]);
+  for (size_t i = 0; i < listed.faces.size(); ++i)
+    faces.push_back(listed.faces[i]), values.push_back(listed.values[i]);
   return {{"faces", faces}, {"values", values}};
 }
 
@@ -195,24 +208,20 @@ void parse_face_values(const json& j, const std::string& path, std::vector<int>&
     if (values[i] <= 0.0) fail(at(path, "values[" + std::to_string(i) + "]"), "must be positive");
 }
 
-// Faces go into arrays of unknown size here; validate_session checks them against the mesh.
-// The array reaches the largest face listed, so that face is checked against kMaxSessionFaces
-// first: [2147483647] overflowed and segfaulted, [2000000000] allocated 16 GB.
-FaceFactors sparse_to_array(const std::vector<int>& faces, const std::vector<double>& values,
-                            const std::string& path) {
-  if (faces.empty()) return nullptr;
-  size_t n = 0;
+// The mesh is not known here: the faces stay a list, which initial_state checks against the
+// mesh before making it an array (a face of 16,777,215 allocated 134 MB before the check). Far
+// beyond any mesh a session may have is an error at once.
+ListedFactors listed_factors(std::vector<int> faces, std::vector<double> values,
+                             const std::string& path) {
   for (size_t i = 0; i < faces.size(); ++i) {
+    const std::string where = path + ".faces[" + std::to_string(i) + "]";
+    if (faces[i] < 0) fail(where, "negative face index");
     if (faces[i] >= kMaxSessionFaces)
-      fail(path + ".faces[" + std::to_string(i) + "]",
-           "face " + std::to_string(faces[i]) + " is beyond the largest mesh a session may have (" +
-               std::to_string(kMaxSessionFaces) + " faces)");
-    n = std::max(n, size_t(faces[i]) + 1);
+      fail(where, "face " + std::to_string(faces[i]) +
+                      " is beyond the largest mesh a session may have (" +
+                      std::to_string(kMaxSessionFaces) + " faces)");
   }
-  auto a = std::make_shared<std::vector<double>>(n, 1.0);
-  for (size_t i = 0; i < faces.size(); ++i)
-    if (faces[i] >= 0) (*a)[size_t(faces[i])] = values[i];
-  return a;
+  return {std::move(faces), std::move(values)};
 }
 
 const char* layer_name(FactorLayer l) { return l == FactorLayer::Height ? "height" : "width"; }
@@ -241,9 +250,12 @@ json event_json(const SessionEvent& e) {
       j["faces"] = e.faces;
       j["values"] = e.values;
       break;
-    case SessionEvent::Type::Prisms: j["prisms"] = prisms_json(e.prisms); break;
+    case SessionEvent::Type::Prisms:
+      j["prisms"] = prisms_json(e.prisms);
+      break;
     case SessionEvent::Type::Undo:
-    case SessionEvent::Type::Redo: break;
+    case SessionEvent::Type::Redo:
+      break;
   }
   return j;
 }
@@ -281,9 +293,12 @@ SessionEvent parse_event(const json& j, SessionEvent::Type type) {
     case SessionEvent::Type::Factors: {
       check_object(j, "", {"t", "frame", "type", "layer", "faces", "values"});
       const json& l = member(j, "", "layer");
-      if (l == "height") e.layer = FactorLayer::Height;
-      else if (l == "width") e.layer = FactorLayer::Width;
-      else fail("layer", "expected \"height\" or \"width\"");
+      if (l == "height")
+        e.layer = FactorLayer::Height;
+      else if (l == "width")
+        e.layer = FactorLayer::Width;
+      else
+        fail("layer", "expected \"height\" or \"width\"");
       parse_face_values(j, "", e.faces, e.values);
       break;
     }
@@ -292,7 +307,9 @@ SessionEvent parse_event(const json& j, SessionEvent::Type type) {
       e.prisms = parse_prisms(member(j, "", "prisms"), "prisms");
       break;
     case SessionEvent::Type::Undo:
-    case SessionEvent::Type::Redo: check_object(j, "", {"t", "frame", "type"}); break;
+    case SessionEvent::Type::Redo:
+      check_object(j, "", {"t", "frame", "type"});
+      break;
   }
   return e;
 }
@@ -325,7 +342,8 @@ Session parse_session(const std::string& text, const std::string& source) {
       if (top_key == "events" && depth == 2 && ev == json::parse_event_t::object_start)
         ++event_index, event_type.clear();
       if (top_key == "events" && depth == 3) {
-        if (ev == json::parse_event_t::key) type_next = parsed == "type";
+        if (ev == json::parse_event_t::key)
+          type_next = parsed == "type";
         else if (ev == json::parse_event_t::value && type_next && parsed.is_string())
           event_type = parsed.get<std::string>(), type_next = false;
       }
@@ -335,17 +353,24 @@ Session parse_session(const std::string& text, const std::string& source) {
     // Line and column of the byte where parsing failed.
     size_t line = 1, col = 1;
     for (size_t i = 0; i + 1 < e.byte && i < text.size(); ++i)
-      if (text[i] == '\n') ++line, col = 1; else ++col;
+      if (text[i] == '\n')
+        ++line, col = 1;
+      else
+        ++col;
     const bool truncated = e.byte >= text.size();
-    std::string where = top_key == "events" && event_index >= 0 ? where_event(event_index, event_type) + ": " : "";
-    throw Error(src + ": " + where + (truncated ? "the file ends early (truncated?)" : "malformed JSON") +
-                " at line " + std::to_string(line) + ", column " + std::to_string(col));
+    std::string where =
+        top_key == "events" && event_index >= 0 ? where_event(event_index, event_type) + ": " : "";
+    throw Error(src + ": " + where +
+                (truncated ? "the file ends early (truncated?)" : "malformed JSON") + " at line " +
+                std::to_string(line) + ", column " + std::to_string(col));
   } catch (const json::exception& e) {
     // A number too large for a double (1e999) is json's out_of_range.406, without a position.
     std::string what = e.what();
-    if (const size_t b = what.find("] "); what.rfind("[json.exception.", 0) == 0 && b != std::string::npos)
+    if (const size_t b = what.find("] ");
+        what.rfind("[json.exception.", 0) == 0 && b != std::string::npos)
       what = what.substr(b + 2);
-    std::string where = top_key == "events" && event_index >= 0 ? where_event(event_index, event_type) + ": " : "";
+    std::string where =
+        top_key == "events" && event_index >= 0 ? where_event(event_index, event_type) + ": " : "";
     throw Error(src + ": " + where + "malformed JSON: " + what);
   }
 
@@ -376,11 +401,16 @@ Session parse_session(const std::string& text, const std::string& source) {
       }
       if (sj.contains("method")) {
         const json& m = sj["method"];
-        if (m == "default") s.solver.method = SolverMethod::Default;
-        else if (m == "global") s.solver.method = SolverMethod::Global;
-        else if (m == "local") s.solver.method = SolverMethod::Local;
-        else if (m == "hierarchical") s.solver.method = SolverMethod::Hierarchical;
-        else fail("solver.method", "expected \"default\", \"global\", \"local\" or \"hierarchical\"");
+        if (m == "default")
+          s.solver.method = SolverMethod::Default;
+        else if (m == "global")
+          s.solver.method = SolverMethod::Global;
+        else if (m == "local")
+          s.solver.method = SolverMethod::Local;
+        else if (m == "hierarchical")
+          s.solver.method = SolverMethod::Hierarchical;
+        else
+          fail("solver.method", "expected \"default\", \"global\", \"local\" or \"hierarchical\"");
       }
     }
     const json& init = member(root, "", "initial");
@@ -394,9 +424,8 @@ Session parse_session(const std::string& text, const std::string& source) {
       std::vector<int> faces;
       std::vector<double> values;
       parse_face_values(init[layer], p, faces, values);
-      for (size_t i = 0; i < faces.size(); ++i)
-        if (faces[i] < 0) fail(p + ".faces[" + std::to_string(i) + "]", "negative face index");
-      (layer[0] == 'h' ? s.initial.height_factor : s.initial.width_factor) = sparse_to_array(faces, values, p);
+      (layer[0] == 'h' ? s.initial.listed_height : s.initial.listed_width) =
+          listed_factors(std::move(faces), std::move(values), p);
     }
   } catch (const Error& e) {
     throw Error(src + ": " + e.what());
@@ -414,19 +443,21 @@ Session parse_session(const std::string& text, const std::string& source) {
   for (size_t i = 0; i < events->size(); ++i) {
     const json& ej = (*events)[i];
     std::string type;
-    if (ej.is_object() && ej.contains("type") && ej["type"].is_string()) type = ej["type"].get<std::string>();
+    if (ej.is_object() && ej.contains("type") && ej["type"].is_string())
+      type = ej["type"].get<std::string>();
     const std::string where = src + ": " + where_event(int(i), type) + ": ";
     if (!ej.is_object()) throw Error(where + "expected an object");
     if (type.empty()) throw Error(where + "type: missing or not a string");
     SessionEvent::Type t{};
     bool known = false;
-    for (auto candidate : {SessionEvent::Type::Handles, SessionEvent::Type::Targets,
-                           SessionEvent::Type::Factors, SessionEvent::Type::Prisms,
-                           SessionEvent::Type::Undo, SessionEvent::Type::Redo})
+    for (auto candidate :
+         {SessionEvent::Type::Handles, SessionEvent::Type::Targets, SessionEvent::Type::Factors,
+          SessionEvent::Type::Prisms, SessionEvent::Type::Undo, SessionEvent::Type::Redo})
       if (type == event_type_name(candidate)) t = candidate, known = true;
     if (!known)
-      throw Error(where + "type: unknown event type (expected handles, targets, factors, prisms, "
-                          "undo or redo)");
+      throw Error(where +
+                  "type: unknown event type (expected handles, targets, factors, prisms, "
+                  "undo or redo)");
     try {
       SessionEvent e = parse_event(ej, t);
       if (e.t < last_t) fail("t", "goes back in time");
@@ -446,23 +477,33 @@ std::string session_to_json(const Session& s, const std::string& session_path) {
   std::string mesh = s.mesh_path.empty() ? s.mesh : s.mesh_path;
   if (!session_path.empty() && !mesh.empty()) {
     std::error_code ec;
-    const fs::path folder = fs::absolute(fs::path(session_path), ec).lexically_normal().parent_path();
-    const fs::path rel = fs::absolute(fs::path(mesh), ec).lexically_normal().lexically_relative(folder);
+    const fs::path folder =
+        fs::absolute(fs::path(session_path), ec).lexically_normal().parent_path();
+    const fs::path rel =
+        fs::absolute(fs::path(mesh), ec).lexically_normal().lexically_relative(folder);
     if (!ec && !rel.empty()) mesh = rel.generic_string();
   }
   const char* method = "default";
   switch (s.solver.method) {
-    case SolverMethod::Global: method = "global"; break;
-    case SolverMethod::Local: method = "local"; break;
-    case SolverMethod::Hierarchical: method = "hierarchical"; break;
-    case SolverMethod::Default: break;
+    case SolverMethod::Global:
+      method = "global";
+      break;
+    case SolverMethod::Local:
+      method = "local";
+      break;
+    case SolverMethod::Hierarchical:
+      method = "hierarchical";
+      break;
+    case SolverMethod::Default:
+      break;
   }
   json handles = json::array();
   for (const SessionHandle& g : s.initial.handles) handles.push_back(handle_json(g));
-  const json initial = {{"prisms", prisms_json(s.initial.prisms)},
-                        {"handles", handles},
-                        {"height_factors", sparse_factors(s.initial.height_factor)},
-                        {"width_factors", sparse_factors(s.initial.width_factor)}};
+  const json initial = {
+      {"prisms", prisms_json(s.initial.prisms)},
+      {"handles", handles},
+      {"height_factors", sparse_factors(s.initial.height_factor, s.initial.listed_height)},
+      {"width_factors", sparse_factors(s.initial.width_factor, s.initial.listed_width)}};
   const json solver = {{"max_iterations", s.solver.max_iterations},
                        {"tolerance", s.solver.tolerance},
                        {"method", method}};

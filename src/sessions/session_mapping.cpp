@@ -41,7 +41,8 @@ Session map_session_to_mesh(const Session& session, const Mesh& coarse, const Me
   auto map_handles = [&](std::vector<SessionHandle>& handles) {
     for (SessionHandle& g : handles) {
       std::vector<int> faces;
-      for (int c : *g.faces) faces.insert(faces.end(), children[size_t(c)].begin(), children[size_t(c)].end());
+      for (int c : *g.faces)
+        faces.insert(faces.end(), children[size_t(c)].begin(), children[size_t(c)].end());
       std::sort(faces.begin(), faces.end());
       if (faces.empty()) throw Error("handle '" + g.name + "' has no face on the finer mesh");
       g.faces = std::make_shared<const std::vector<int>>(std::move(faces));
@@ -55,6 +56,7 @@ Session map_session_to_mesh(const Session& session, const Mesh& coarse, const Me
     f = a;
   };
   Session s = session;
+  s.initial = initial_state(session, int(coarse.n_faces()));  // listed factors made arrays
   map_handles(s.initial.handles);
   map_factors(s.initial.height_factor);
   map_factors(s.initial.width_factor);

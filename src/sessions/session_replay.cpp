@@ -11,7 +11,8 @@
 namespace primo {
 namespace {
 
-std::unique_ptr<Deformer> build(const Mesh& mesh, const SessionState& state, const Deformer* previous) {
+std::unique_ptr<Deformer> build(const Mesh& mesh, const SessionState& state,
+                                const Deformer* previous) {
   const SessionSolverInputs in = solver_inputs(state);
   auto d = std::make_unique<Deformer>(mesh, in.params, in.handles, in.forces);
   if (previous) d->set_face_motions(previous->face_motions());
@@ -20,7 +21,8 @@ std::unique_ptr<Deformer> build(const Mesh& mesh, const SessionState& state, con
 
 void set_targets(Deformer& d, const SessionState& state) {
   const SessionSolverInputs in = solver_inputs(state);
-  for (size_t h = 0; h < in.handles.size(); ++h) d.set_handle_transform(int(h), in.handles[h].transform);
+  for (size_t h = 0; h < in.handles.size(); ++h)
+    d.set_handle_transform(int(h), in.handles[h].transform);
   for (size_t f = 0; f < in.forces.size(); ++f)
     if (in.forces[f].target_offset != d.forces()[f].target_offset)
       d.set_force_offset(int(f), in.forces[f].target_offset);
@@ -41,9 +43,7 @@ ReplayResult replay_session(const Session& session, const Mesh& mesh, const Repl
   validate_session(session, n_faces);  // throws naming the event; nothing solved yet
 
   ReplayResult r;
-  SessionState state = validate_session(
-      Session{session.source, session.mesh, session.mesh_path, session.solver, session.initial, {}},
-      n_faces);
+  SessionState state = initial_state(session, n_faces);
   std::unique_ptr<Deformer> d = build(mesh, state, nullptr);
   bool converged = false;
   size_t next = 0;
@@ -72,8 +72,10 @@ ReplayResult replay_session(const Session& session, const Mesh& mesh, const Repl
       converged = false;
     }
     if (!(before == state)) idle_iterations = 0;
-    if (!converged && idle_iterations < session.solver.max_iterations && opt.iterations_per_frame > 0) {
-      const SolveReport rep = d->solve(options_for(session.solver, n_faces, opt.iterations_per_frame));
+    if (!converged && idle_iterations < session.solver.max_iterations &&
+        opt.iterations_per_frame > 0) {
+      const SolveReport rep =
+          d->solve(options_for(session.solver, n_faces, opt.iterations_per_frame));
       r.iterations += rep.iterations;
       idle_iterations += std::max(rep.iterations, 1);
       converged = rep.converged && rep.stop_reason == "tolerance";
@@ -84,7 +86,8 @@ ReplayResult replay_session(const Session& session, const Mesh& mesh, const Repl
 
   // Settle, confirmed by one more solve after a stop on the tolerance.
   for (int pass = 0; pass < 2; ++pass) {
-    const SolveReport rep = d->solve(options_for(session.solver, n_faces, session.solver.max_iterations));
+    const SolveReport rep =
+        d->solve(options_for(session.solver, n_faces, session.solver.max_iterations));
     r.iterations += rep.iterations;
     r.converged = rep.converged;
     r.energy = rep.energy;
@@ -99,7 +102,8 @@ ReplayResult replay_session(const Session& session, const Mesh& mesh, const Repl
   return r;
 }
 
-std::vector<Vec3> solve_from_rest(const SessionState& state, const Mesh& mesh, const SolverSpec& spec) {
+std::vector<Vec3> solve_from_rest(const SessionState& state, const Mesh& mesh,
+                                  const SolverSpec& spec) {
   std::unique_ptr<Deformer> d = build(mesh, state, nullptr);
   for (int pass = 0; pass < 2; ++pass)
     if (!d->solve(options_for(spec, int(mesh.n_faces()), spec.max_iterations)).converged) break;

@@ -2,12 +2,11 @@
 // state and the mesh it is applied to, so that a bad file is rejected, naming the event, before
 // anything is solved.
 
-#include "primo/session.h"
-
 #include <algorithm>
 #include <memory>
 
 #include "primo/error.h"
+#include "primo/session.h"
 
 namespace primo {
 namespace {
@@ -23,15 +22,16 @@ std::string at(const std::string& path, const std::string& key) {
 void check_faces(const std::vector<int>& faces, int n_faces, const std::string& path, bool sorted) {
   for (size_t i = 0; i < faces.size(); ++i) {
     if (faces[i] < 0 || faces[i] >= n_faces)
-      fail(path + "[" + std::to_string(i) + "]",
-           "face " + std::to_string(faces[i]) + " out of range (the mesh has " +
-               std::to_string(n_faces) + " faces)");
+      fail(path + "[" + std::to_string(i) + "]", "face " + std::to_string(faces[i]) +
+                                                     " out of range (the mesh has " +
+                                                     std::to_string(n_faces) + " faces)");
     if (sorted && i > 0 && faces[i] <= faces[i - 1])
       fail(path + "[" + std::to_string(i) + "]", "faces must be sorted and distinct");
   }
 }
 
-void check_handles(const std::vector<SessionHandle>& handles, int n_faces, const std::string& path) {
+void check_handles(const std::vector<SessionHandle>& handles, int n_faces,
+                   const std::string& path) {
   std::vector<int> owner(size_t(n_faces), -1);
   for (size_t h = 0; h < handles.size(); ++h) {
     const std::string p = path + "[" + std::to_string(h) + "]";
@@ -56,20 +56,28 @@ FaceFactors set_factors(const FaceFactors& old, int n_faces, const std::vector<i
   return a;
 }
 
+// How messages name a session: its file, or "session" for one made in memory.
+std::string source_name(const Session& s) { return s.source.empty() ? "session" : s.source; }
+
 }  // namespace
 
 const char* event_type_name(SessionEvent::Type type) {
   switch (type) {
-    case SessionEvent::Type::Handles: return "handles";
-    case SessionEvent::Type::Targets: return "targets";
-    case SessionEvent::Type::Factors: return "factors";
-    case SessionEvent::Type::Prisms: return "prisms";
-    case SessionEvent::Type::Undo: return "undo";
-    case SessionEvent::Type::Redo: return "redo";
+    case SessionEvent::Type::Handles:
+      return "handles";
+    case SessionEvent::Type::Targets:
+      return "targets";
+    case SessionEvent::Type::Factors:
+      return "factors";
+    case SessionEvent::Type::Prisms:
+      return "prisms";
+    case SessionEvent::Type::Undo:
+      return "undo";
+    case SessionEvent::Type::Redo:
+      return "redo";
   }
   return "?";
 }
-
 
 void apply_event(SessionState& state, const SessionEvent& e, int n_faces) {
   switch (e.type) {
@@ -93,25 +101,38 @@ void apply_event(SessionState& state, const SessionEvent& e, int n_faces) {
       f = set_factors(f, n_faces, e.faces, e.values);
       break;
     }
-    case SessionEvent::Type::Prisms: state.prisms = e.prisms; break;
+    case SessionEvent::Type::Prisms:
+      state.prisms = e.prisms;
+      break;
     case SessionEvent::Type::Undo:
-    case SessionEvent::Type::Redo: break;
+    case SessionEvent::Type::Redo:
+      break;
   }
 }
 
-SessionState validate_session(const Session& s, int n_faces) {
-  const std::string src = s.source.empty() ? "session" : s.source;
+SessionState initial_state(const Session& s, int n_faces) {
+  const std::string src = source_name(s);
   SessionState state = s.initial;
   try {
     check_handles(state.handles, n_faces, "initial.handles");
-    for (const FaceFactors* f : {&state.height_factor, &state.width_factor})
-      if (*f && int((*f)->size()) > n_faces)
-        fail("initial", "a painted face is out of range (the mesh has " + std::to_string(n_faces) + " faces)");
-    if (state.height_factor) state.height_factor = set_factors(state.height_factor, n_faces, {}, {});
-    if (state.width_factor) state.width_factor = set_factors(state.width_factor, n_faces, {}, {});
+    const auto check = [&](FaceFactors& f, const ListedFactors& listed, const std::string& key) {
+      if (f && int(f->size()) > n_faces)
+        fail("initial",
+             "a painted face is out of range (the mesh has " + std::to_string(n_faces) + " faces)");
+      check_faces(listed.faces, n_faces, key + ".faces", false);  // before any array is made
+      if (f || !listed.faces.empty()) f = set_factors(f, n_faces, listed.faces, listed.values);
+    };
+    check(state.height_factor, s.initial.listed_height, "initial.height_factors");
+    check(state.width_factor, s.initial.listed_width, "initial.width_factors");
   } catch (const Error& e) {
     throw Error(src + ": " + e.what());
   }
+  return state;
+}
+
+SessionState validate_session(const Session& s, int n_faces) {
+  const std::string src = source_name(s);
+  SessionState state = initial_state(s, n_faces);
   for (size_t i = 0; i < s.events.size(); ++i) {
     try {
       apply_event(state, s.events[i], n_faces);

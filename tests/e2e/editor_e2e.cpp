@@ -30,6 +30,10 @@ using namespace primo::e2e;
 
 namespace {
 
+// Script lines: once the first solve has settled, drag the bar's top handle sideways.
+const char* const kDragTheTop =
+    "wait-settled 60\nmove @top\npress left\nmove @top 160 40 over 0.5\nrelease left\n";
+
 // The saved scenario solved by `primo deform` equals the editor's saved mesh.
 void expect_deform_reproduces(const std::string& dir) {
   ASSERT_TRUE(fs::exists(dir + "/editor.json"));
@@ -204,17 +208,42 @@ TEST(EditorE2E, ScreenshotFromTheCommandLine) {
   EXPECT_NE(read_text(dir + "/broken.log").find("broken.json"), std::string::npos);
 }
 
+TEST(EditorE2E, AScriptThatWaitsTooLongEndsAtItsTimeout) {
+  // A drag, then a wait of a day: the --timeout ends the run with one line naming the script and
+  // the line it was on, status 1, well before the watchdog's grace; the drag is autosaved, as
+  // on SIGTERM, into the state folder given here.
+  const std::string dir = artifacts("script-timeout");
+  const std::string scenario = make_bar_scenario(dir);
+  write_text(dir + "/long.txt", std::string(kDragTheTop) + "wait 86400\nquit\n");
+  const auto start = std::chrono::steady_clock::now();
+  const int code = run("PRIMO_STATE_DIR=" + dir + "/state PRIMO_CONFIG_DIR=" + dir + "/config " +
+                       kPrimo + " edit " + scenario + " --script " + dir +
+                       "/long.txt --timeout 30 > " + dir + "/editor.log 2> " + dir + "/errors.log");
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const std::string errors = read_text(dir + "/errors.log");
+  EXPECT_EQ(code, 1) << errors;
+  EXPECT_GE(seconds, 30.0);
+  EXPECT_LT(seconds, 40.0);  // the loop stopped itself: the watchdog would take 45 s
+  const std::string autosave_dir = dir + "/state/autosave";
+  ASSERT_TRUE(fs::is_directory(autosave_dir)) << errors;
+  const std::string autosaved = fs::directory_iterator(autosave_dir)->path().string();
+  EXPECT_EQ("primo edit: error: " + dir +
+                "/long.txt:6: the script did not finish within the --timeout of 30 s; the "
+                "unsaved work is autosaved to " +
+                autosaved + "\n",
+            errors);
+  const Scenario saved = load_scenario(autosaved);
+  ASSERT_EQ(saved.handles.size(), 2u);
+  EXPECT_GT(saved.handles[1].transform.translate.norm(), 0.05) << "the drag was not kept";
+}
+
 TEST(EditorE2E, AnOpenMenuTakesTheKeysAndEscapeClosesIt) {
   // With the File menu open, Ctrl+Z must not undo the drag behind it; Esc closes the menu,
   // and Ctrl+Z then undoes. The saved scenarios tell which happened.
   const std::string dir = artifacts("menu-keys");
   const std::string scenario = make_bar_scenario(dir);
-  write_text(dir + "/menu.txt", R"(wait-settled 60
-move @top
-press left
-move @top 160 40 over 0.5
-release left
-wait-settled 120
+  write_text(dir + "/menu.txt", std::string(kDragTheTop) + R"(wait-settled 120
 move 25 11
 click left
 wait 0.3

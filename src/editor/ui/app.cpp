@@ -1,21 +1,23 @@
 #include "app.h"
 
 #include <imgui.h>
-#include <imgui_internal.h>
 #include <imgui_impl_glfw.h>
 #include <imgui_impl_opengl3.h>
+#include <imgui_internal.h>
 
 #include <atomic>
+#include <cctype>
 #include <chrono>
 #include <csignal>
-#include <cstdlib>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <optional>
 #include <sstream>
 #include <thread>
 
+#include "autosave.h"
 #include "editor.h"
 #include "face_colors.h"
 #include "gl.h"
@@ -25,6 +27,7 @@
 #include "preferences_window.h"
 #include "primo/error.h"
 #include "renderer.h"
+#include "run_deadline.h"
 #include "screenshot.h"
 #include "script.h"
 
@@ -83,8 +86,8 @@ void apply_style(float scale) {
 
 void load_font(float scale) {
   ImGuiIO& io = ImGui::GetIO();
-  for (const char* path : {"/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf",
-                           "/usr/share/fonts/TTF/DejaVuSans.ttf"}) {
+  for (const char* path :
+       {"/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf", "/usr/share/fonts/TTF/DejaVuSans.ttf"}) {
     if (std::filesystem::exists(path) && io.Fonts->AddFontFromFileTTF(path, 15.0f * scale)) return;
   }
   ImFontConfig config;
@@ -129,9 +132,17 @@ class App : public ScriptHost {
   void sync_renderer();
   void take_screenshot(const ViewportRect& vp, int fb_width, int fb_height, bool with_ui_drawn);
   void fail(const std::string& message);
+  void stop_at_timeout();
+  std::string busy_or_unsettled() const;
+  std::string autosave_unsaved_work();
+  bool out_of_time() const { return deadline_ && deadline_->expired(); }
+  void finish_file_task();
 
   EditorOptions options_;
   GLFWwindow* window_;
+  // Scripted and --screenshot runs only. Before the editor, so that its watchdog still runs
+  // while the editor shuts down (which waits for an open or save under way).
+  std::unique_ptr<RunDeadline> deadline_;
   Editor editor_;
   UiState ui_;
   std::unique_ptr<MeshRenderer> renderer_;
@@ -141,11 +152,10 @@ class App : public ScriptHost {
   bool buttons_[3] = {false, false, false};
   bool just_pressed_[3] = {false, false, false};
   const MeshTopology* shown_topology_ = nullptr;
-  const ProxyTriangles* shown_proxy_ = nullptr;  // null until the document's proxy is built
+  const ProxyTriangles* shown_proxy_ = nullptr;       // null until the document's proxy is built
   std::optional<ModelOrientation> grid_orientation_;  // of the ground grid drawn (none yet)
   int settled_frames_ = 0;
   bool screenshot_run_ = false;
-  double start_ = 0.0;
   size_t errors_seen_ = 0;
   std::string shown_title_;
   bool quit_ = false;
@@ -168,9 +178,8 @@ void App::install_callbacks() {
     e.scancode = scancode;
     of(w).queue_.push_back(e);
   });
-  glfwSetCharCallback(window_, [](GLFWwindow* w, unsigned c) {
-    of(w).queue_.push_back(InputEvent::character(c));
-  });
+  glfwSetCharCallback(
+      window_, [](GLFWwindow* w, unsigned c) { of(w).queue_.push_back(InputEvent::character(c)); });
   glfwSetDropCallback(window_, [](GLFWwindow* w, int count, const char** paths) {
     of(w).queue_.push_back(InputEvent::drop(std::vector<std::string>(paths, paths + count)));
   });
@@ -186,23 +195,31 @@ void App::feed_imgui() {
       case InputEvent::Type::Key:
         ImGui_ImplGlfw_KeyCallback(window_, e.key, e.scancode, e.action, e.mods);
         break;
-      case InputEvent::Type::Char: ImGui_ImplGlfw_CharCallback(window_, e.codepoint); break;
-      case InputEvent::Type::Scroll: ImGui_ImplGlfw_ScrollCallback(window_, e.x, e.y); break;
+      case InputEvent::Type::Char:
+        ImGui_ImplGlfw_CharCallback(window_, e.codepoint);
+        break;
+      case InputEvent::Type::Scroll:
+        ImGui_ImplGlfw_ScrollCallback(window_, e.x, e.y);
+        break;
       case InputEvent::Type::MouseButton:
         if (e.button >= 0 && e.button < 3) {
           buttons_[e.button] = e.action == GLFW_PRESS;
           if (e.action == GLFW_PRESS) just_pressed_[e.button] = true;
         }
         break;
-      case InputEvent::Type::CursorMove: cursor_ = {e.x, e.y}; break;
-      case InputEvent::Type::Drop: break;
+      case InputEvent::Type::CursorMove:
+        cursor_ = {e.x, e.y};
+        break;
+      case InputEvent::Type::Drop:
+        break;
     }
   }
 }
 
 void App::locate(const ScriptCommand& c, double& x, double& y) {
   if (c.anchor == ScriptCommand::Anchor::Handle) {
-    if (!editor_.handle_window_position(c.handle, x, y)) throw Error("no handle named '" + c.handle + "'");
+    if (!editor_.handle_window_position(c.handle, x, y))
+      throw Error("no handle named '" + c.handle + "'");
   } else if (c.anchor == ScriptCommand::Anchor::Center) {
     const ViewportRect& vp = editor_.viewport();
     x = vp.x + vp.width * 0.5;
@@ -221,34 +238,41 @@ void App::run(const ScriptCommand& c) {
     case K::Open:
       // As a person would, a script opens the next file once the last open or save is done
       // (the editor refuses a second file task); the solver may still be busy.
-      while (editor_.file_task_running()) {
-        std::this_thread::sleep_for(std::chrono::milliseconds(5));
-        editor_.update(0.0);
-      }
+      finish_file_task();
       editor_.open(c.text);
       break;
     case K::SaveMesh:
       editor_.save_mesh(c.text);
-      while (editor_.file_task_running()) {  // a script goes on once the file is there
-        std::this_thread::sleep_for(std::chrono::milliseconds(5));
-        editor_.update(0.0);
-      }
+      finish_file_task();  // a script goes on once the file is there
       break;
-    case K::SaveScenario: editor_.save_scenario(c.text); break;
+    case K::SaveScenario:
+      editor_.save_scenario(c.text);
+      break;
     case K::Screenshot:
       ui_.screenshot_path = c.text;
       ui_.screenshot_with_ui = c.with_ui;
       break;
-    case K::Echo: std::printf("%s\n", c.text.c_str()); break;
-    case K::RecordStart: editor_.sessions.start_recording(editor_); break;
-    case K::RecordStop: editor_.sessions.stop_recording(editor_); break;
-    case K::SaveSession: editor_.sessions.save(editor_, c.text); break;
+    case K::Echo:
+      std::printf("%s\n", c.text.c_str());
+      break;
+    case K::RecordStart:
+      editor_.sessions.start_recording(editor_);
+      break;
+    case K::RecordStop:
+      editor_.sessions.stop_recording(editor_);
+      break;
+    case K::SaveSession:
+      editor_.sessions.save(editor_, c.text);
+      break;
     case K::PlaySession:
       editor_.sessions.open_playback(editor_, c.text);
       editor_.sessions.play(editor_);
       break;
-    case K::Quit: quit_ = true; break;
-    default: break;
+    case K::Quit:
+      quit_ = true;
+      break;
+    default:
+      break;
   }
   if (editor_.error_count() != errors_before) throw Error(editor_.messages().back().text);
 }
@@ -257,6 +281,44 @@ void App::fail(const std::string& message) {
   std::fprintf(stderr, "primo edit: error: %s\n", message.c_str());
   exit_code_ = 1;
   quit_ = true;
+}
+
+// Waits for the open or save under way; throws when the --timeout runs out first (frame()
+// then reports the timeout, not this).
+void App::finish_file_task() {
+  while (editor_.file_task_running()) {
+    if (out_of_time()) throw Error("still busy with " + editor_.file_task_label());
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    editor_.update(0.0);
+  }
+}
+
+// What SIGTERM does too: the work is kept for recovery at the next start (autosave.h).
+// Returns how the message goes on: where the work went, or that it could not be kept.
+std::string App::autosave_unsaved_work() {
+  if (!editor_.has_unsaved_changes()) return "";
+  if (!editor_.autosave_now()) return "; the unsaved work could not be autosaved";
+  return "; the unsaved work is autosaved to " + autosave_path(editor_.document()->mesh_path);
+}
+
+// Why a --screenshot run is not done: the input is still loading (a huge file, or a pipe that
+// never ends), or its solve has not settled.
+std::string App::busy_or_unsettled() const {
+  if (!editor_.file_task_running()) return "the solve did not settle";
+  std::string label = editor_.file_task_label();  // "Opening bar.obj"
+  if (!label.empty()) label[0] = char(std::tolower(static_cast<unsigned char>(label[0])));
+  return "still " + label;
+}
+
+// One line naming what ran out of time (the script and its line, or the input whose solve did
+// not settle), exit status 1, and the unsaved work autosaved.
+void App::stop_at_timeout() {
+  const std::string what =
+      script_ ? options_.script + ":" + std::to_string(script_->line()) +
+                    ": the script did not finish within the --timeout of " + deadline_->shown()
+              : options_.input + ": " + busy_or_unsettled() + " within the --timeout of " +
+                    deadline_->shown() + " (nothing was written)";
+  fail(what + autosave_unsaved_work());
 }
 
 void App::sync_renderer() {
@@ -269,7 +331,8 @@ void App::sync_renderer() {
     grid_orientation_.reset();
   }
   if (!grid_orientation_ || !(*grid_orientation_ == doc->state.orientation)) {
-    renderer_->set_ground_grid(make_ground_grid(doc->topology->rest_points, doc->state.orientation));
+    renderer_->set_ground_grid(
+        make_ground_grid(doc->topology->rest_points, doc->state.orientation));
     grid_orientation_ = doc->state.orientation;
   }
   if (!shown_proxy_) {
@@ -315,7 +378,8 @@ void App::take_screenshot(const ViewportRect& vp, int fb_width, int fb_height, b
     if (whole_window) {
       save_screenshot(ui_.screenshot_path, 0, 0, fb_width, fb_height);
     } else {
-      const int x = int(vp.x * vp.scale), w = int(vp.width * vp.scale), h = int(vp.height * vp.scale);
+      const int x = int(vp.x * vp.scale), w = int(vp.width * vp.scale),
+                h = int(vp.height * vp.scale);
       const int y = fb_height - int(vp.y * vp.scale) - h;
       save_screenshot(ui_.screenshot_path, x, y, w, h);
     }
@@ -330,7 +394,7 @@ void App::take_screenshot(const ViewportRect& vp, int fb_width, int fb_height, b
 void App::frame(double now, double dt) {
   if (script_ && !script_->finished()) {
     script_->update(now, *this);
-    if (script_->failed()) fail(script_->error());
+    if (script_->failed()) out_of_time() ? stop_at_timeout() : fail(script_->error());
   }
   feed_imgui();
   ImGui_ImplOpenGL3_NewFrame();
@@ -399,12 +463,11 @@ void App::frame(double now, double dt) {
       ui_.screenshot_path = options_.screenshot;
       ui_.screenshot_with_ui = options_.screenshot_ui;
       quit_ = true;
-    } else if (now - start_ > options_.timeout) {
-      fail("the solve did not settle within " + std::to_string(int(options_.timeout)) + " s");
     }
   }
   errors_seen_ = editor_.error_count();
-  if (!ui_.screenshot_path.empty() && !ui_.screenshot_with_ui) take_screenshot(vp, fb_w, fb_h, false);
+  if (!ui_.screenshot_path.empty() && !ui_.screenshot_with_ui)
+    take_screenshot(vp, fb_w, fb_h, false);
   ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
   if (!ui_.screenshot_path.empty()) take_screenshot(vp, fb_w, fb_h, true);
   glfwSwapBuffers(window_);
@@ -447,13 +510,16 @@ int App::run() {
   if (screenshot_run_ && !options_.screenshot_ui) ui_.show_panels = false;
   // Scripted and screenshot runs are automation: no recovery prompt in their way.
   if (script_ || screenshot_run_) ui_.recovery_checked = true;
+  // Automation must end: a script may wait, a solve may never settle (docs/editor.md).
+  if (script_ || screenshot_run_)
+    deadline_ =
+        std::make_unique<RunDeadline>(options_.timeout, script_ ? options_.script : options_.input);
   if (!options_.input.empty()) editor_.open(options_.input);
 
   double last = glfwGetTime();
-  start_ = last;
   for (;;) {
     if (g_termination_requested) {
-      if (editor_.has_unsaved_changes()) editor_.autosave_now();
+      autosave_unsaved_work();
       break;
     }
     // The window's close button asks first when there is unsaved work.
@@ -462,6 +528,10 @@ int App::run() {
       glfwSetWindowShouldClose(window_, GLFW_FALSE);
     }
     if (quit_) break;
+    if (out_of_time()) {
+      stop_at_timeout();
+      break;
+    }
     const bool animate = editor_.solver_status().busy() || editor_.file_task_running() || script_ ||
                          screenshot_run_ || editor_.gesture() != Editor::Gesture::None ||
                          editor_.camera().update(0.0) || renderer_->drew_proxy();

@@ -11,7 +11,7 @@ struct EditorOptions {
   bool screenshot_ui = false;   // ... with the panels (default: the view alone)
   std::string script;           // timed input events and commands (see script.h)
   int width = 1280, height = 800;
-  double timeout = 300.0;       // seconds a --screenshot run may take
+  double timeout = 300.0;  // seconds a --screenshot or --script run may take
 };
 
 // Opens the window and runs until it is closed (or the screenshot/script is done). Returns
