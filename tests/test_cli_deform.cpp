@@ -2,6 +2,7 @@
 // file left behind) for every kind of bad input.
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <filesystem>
 #include <nlohmann/json.hpp>
@@ -166,6 +167,30 @@ TEST_F(DeformCli, FaceInTwoHandles) {
 TEST_F(DeformCli, EmptySelectionNamesTheForce) {
   write_text(dir + "/f.json", scenario_json("cube.obj", R"(, "forces": [{"select": {"sphere": {"center": [9, 9, 9], "radius": 0.1}}, "target_offset": [0, 1, 0], "stiffness": 1}])"));
   expect_error("deform " + dir + "/f.json -o " + dir + "/o.obj", "forces[0]", dir + "/o.obj");
+}
+
+TEST_F(DeformCli, PipesFoldersAndDevicesAsInputsFailAtOnce) {
+  ASSERT_EQ(0, ::mkfifo((dir + "/pipe.json").c_str(), 0600));
+  ASSERT_EQ(0, ::mkfifo((dir + "/pipe.obj").c_str(), 0600));
+  fs::create_directory(dir + "/folder.json");
+  write_text(dir + "/piped-mesh.json", scenario_json("pipe.obj"));
+  fs::create_symlink("/dev/urandom", dir + "/random.json");
+  const struct {
+    std::string scenario, needle;
+  } cases[] = {
+      {dir + "/pipe.json", "pipe.json: not a regular file (a named pipe)"},
+      {dir + "/folder.json", "folder.json: not a regular file (a folder)"},
+      {dir + "/piped-mesh.json", "pipe.obj: not a regular file (a named pipe)"},
+      {dir + "/random.json", "random.json: not a regular file (a character device)"},
+  };
+  for (const auto& c : cases) {
+    // Before the check, primo waited for a writer to the pipe, or read /dev/urandom, for ever.
+    const CommandResult r =
+        primo::test::run_primo_within(20, "deform " + c.scenario + " -o " + dir + "/out.obj");
+    EXPECT_EQ(r.exit_code, 1) << c.scenario << " (124: still running after 20 s)";
+    EXPECT_EQ(r.err, "primo deform: error: " + dir + "/" + c.needle + "\n");
+    EXPECT_FALSE(fs::exists(dir + "/out.obj"));
+  }
 }
 
 TEST_F(DeformCli, UnknownOutputFormatFailsBeforeSolving) {

@@ -2,15 +2,26 @@
 // hung or silently got wrong outside the mesh readers (tests/test_hostile_meshes.cpp). Each is
 // one clear error naming the file, or the right result.
 
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <condition_variable>
+#include <filesystem>
+#include <memory>
+#include <mutex>
 #include <string>
+#include <thread>
+#include <vector>
 
+#include "preferences.h"
 #include "primo/deformer.h"
 #include "primo/error.h"
+#include "primo/input_files.h"
 #include "primo/mesh_generators.h"
 #include "primo/mesh_io.h"
 #include "primo/scenario.h"
@@ -246,6 +257,98 @@ TEST(HostileNumbers, ControlBytesFromJsonStringsAreNotPrinted) {
   expect_contains(r.err, "\\x1B[2J\\x0Aall");
   EXPECT_EQ(1, std::count(r.err.begin(), r.err.end(), '\n')) << r.err;
   EXPECT_EQ(std::string::npos, r.err.find('\x1b')) << r.err;
+}
+
+// --- files that are not regular files, or too large -----------------------------------------
+
+// A named pipe that cannot hang the test: should a reader wait in open() for a writer (what
+// PriMo did before it checked its inputs), a writer comes after 10 s, the reader sees an empty
+// file and the test fails on its message instead of hanging.
+class GuardedFifo {
+ public:
+  explicit GuardedFifo(const std::string& path) : path_(path) {
+    EXPECT_EQ(0, ::mkfifo(path.c_str(), 0600)) << path;
+    writer_ = std::thread([this] {
+      std::unique_lock<std::mutex> lock(mutex_);
+      if (stopped_.wait_for(lock, std::chrono::seconds(10), [this] { return stop_; })) return;
+      while (!stop_) {  // the open fails (ENXIO) until a reader waits
+        const int fd = ::open(path_.c_str(), O_WRONLY | O_NONBLOCK);
+        if (fd >= 0) ::close(fd);
+        stopped_.wait_for(lock, std::chrono::milliseconds(20), [this] { return stop_; });
+      }
+    });
+  }
+  ~GuardedFifo() {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      stop_ = true;
+    }
+    stopped_.notify_all();
+    writer_.join();
+  }
+
+ private:
+  std::string path_;
+  std::mutex mutex_;
+  std::condition_variable stopped_;
+  bool stop_ = false;
+  std::thread writer_;
+};
+
+// Every reader of a user's file: meshes (PriMo's own readers and Assimp's), scenarios, sessions.
+void expect_every_reader_refuses(const std::string& stem, const std::string& problem) {
+  for (const std::string ext : {".obj", ".ply", ".gltf", ".dae"})
+    expect_contains(error_of([&] { load_mesh(stem + ext); }), stem + ext + ": " + problem);
+  expect_contains(error_of([&] { load_scenario(stem + ".json"); }), stem + ".json: " + problem);
+  expect_contains(error_of([&] { load_session(stem + ".session.json"); }),
+                  stem + ".session.json: " + problem);
+}
+
+TEST(HostileFiles, PipesFoldersAndDevicesAreRefusedBeforeTheyAreOpened) {
+  const std::string dir = test::temp_dir();
+  std::vector<std::unique_ptr<GuardedFifo>> pipes;
+  for (const char* ext : {".obj", ".ply", ".gltf", ".dae", ".json", ".session.json"}) {
+    pipes.push_back(std::make_unique<GuardedFifo>(dir + "/pipe" + ext));
+    std::filesystem::create_directory(dir + "/folder" + ext);
+    std::filesystem::create_symlink("/dev/zero", dir + "/zero" + ext);
+  }
+  const Clock::time_point start = Clock::now();
+  expect_every_reader_refuses(dir + "/pipe", "not a regular file (a named pipe)");
+  expect_every_reader_refuses(dir + "/folder", "not a regular file (a folder)");
+  expect_every_reader_refuses(dir + "/zero", "not a regular file (a character device)");
+  expect_contains(error_of([] { check_input_file("/dev/urandom"); }),
+                  "/dev/urandom: not a regular file (a character device)");
+  EXPECT_LT(seconds_since(start), 2.0);
+
+  // Preferences are a convenience: the defaults, and the problem said.
+  const editor::Preferences preferences = editor::load_preferences(dir + "/pipe.json");
+  EXPECT_EQ(preferences.brush_radius, editor::Preferences{}.brush_radius);
+  ASSERT_EQ(1u, preferences.problems.size());
+  expect_contains(preferences.problems[0], "pipe.json: not a regular file (a named pipe)");
+}
+
+TEST(HostileFiles, ALinkToARegularFileIsRead) {
+  const std::string dir = test::temp_dir();
+  save_mesh(make_bar(0.2, 1.0, 1, 2), dir + "/bar.obj");
+  std::filesystem::create_symlink(dir + "/bar.obj", dir + "/link.obj");
+  EXPECT_EQ(make_bar(0.2, 1.0, 1, 2).n_faces(), load_mesh(dir + "/link.obj").n_faces());
+}
+
+TEST(HostileFiles, FilesLargerThanAnInputMayBeAreRefusedUnread) {
+  const std::string dir = test::temp_dir();
+  // Sparse: no disk space, and a reader that did read it would take seconds and gigabytes.
+  for (const char* name : {"/big.obj", "/big.json", "/big.session.json"}) {
+    test::write_text(dir + name, "");
+    std::filesystem::resize_file(dir + name, kMaxInputFileBytes + 1);
+  }
+  const Clock::time_point start = Clock::now();
+  const std::string problem =
+      ": the file is 2147483649 bytes, more than an input may be (2 GiB = 2147483648 bytes)";
+  expect_contains(error_of([&] { load_mesh(dir + "/big.obj"); }), dir + "/big.obj" + problem);
+  expect_contains(error_of([&] { load_scenario(dir + "/big.json"); }), dir + "/big.json" + problem);
+  expect_contains(error_of([&] { load_session(dir + "/big.session.json"); }),
+                  dir + "/big.session.json" + problem);
+  EXPECT_LT(seconds_since(start), 1.0);
 }
 
 // --- editor scripts -------------------------------------------------------------------------

@@ -92,10 +92,15 @@ nlohmann::json read_json(const std::string& path) {
   return nlohmann::json::parse(in);
 }
 
-CommandResult run_primo(const std::string& arguments) {
+CommandResult run_primo(const std::string& arguments) { return run_primo_within(0, arguments); }
+
+CommandResult run_primo_within(int seconds, const std::string& arguments) {
   const std::string dir = temp_dir();
-  const std::string command = std::string(PRIMO_EXECUTABLE) + " " + arguments + " >" + dir +
-                              "/out.txt 2>" + dir + "/err.txt";
+  // timeout(1) sends SIGTERM, then SIGKILL 5 s later to a process that ignores it.
+  const std::string limit =
+      seconds > 0 ? "timeout -k 5 " + std::to_string(seconds) + " " : std::string();
+  const std::string command =
+      limit + PRIMO_EXECUTABLE + " " + arguments + " >" + dir + "/out.txt 2>" + dir + "/err.txt";
   const int status = std::system(command.c_str());
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, read_text(dir + "/out.txt"),
           read_text(dir + "/err.txt")};

@@ -27,6 +27,9 @@ struct CommandResult {
   std::string out, err;
 };
 CommandResult run_primo(const std::string& arguments);
+// The same, stopped after `seconds` (then exit_code is 124, as timeout(1) reports it, or -1):
+// for inputs that could make primo hang.
+CommandResult run_primo_within(int seconds, const std::string& arguments);
 
 }  // namespace primo::test
 

@@ -18,7 +18,6 @@
 
 #include "mesh_import_assimp.h"
 
-#include <assimp/Importer.hpp>
 #include <assimp/material.h>
 #include <assimp/metadata.h>
 #include <assimp/postprocess.h>
@@ -26,6 +25,7 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <assimp/Importer.hpp>
 #include <cctype>
 #include <cerrno>
 #include <climits>
@@ -40,6 +40,7 @@
 
 #include "mesh_export_gltf.h"
 #include "primo/error.h"
+#include "primo/input_files.h"
 #include "primo/mesh_import.h"
 
 namespace fs = std::filesystem;
@@ -463,18 +464,9 @@ SceneSoup read_with_assimp(const std::string& path, Read read) {
 }  // namespace
 
 SceneSoup read_scene_file(const std::string& path) {
-  std::error_code ignored;
-  if (fs::is_directory(path, ignored)) fail(path, "cannot read: this is a folder, not a file");
-  std::FILE* file = std::fopen(path.c_str(), "rb");
-  if (!file) fail(path, std::string("cannot open: ") + std::strerror(errno));
-  if (lowercase_extension(path) == ".dae") {
-    std::string bytes;
-    char buffer[1 << 16];
-    size_t count;
-    while ((count = std::fread(buffer, 1, sizeof buffer, file)) > 0) bytes.append(buffer, count);
-    check_collada_counts(bytes, path);
-  }
-  std::fclose(file);
+  // Assimp opens the file itself (a .gltf also its buffers): it must not meet a pipe or a device.
+  check_input_file(path);
+  if (lowercase_extension(path) == ".dae") check_collada_counts(read_input_file(path), path);
   return read_with_assimp(path, [&](Assimp::Importer& importer, unsigned flags) {
     return importer.ReadFile(path, flags);
   });

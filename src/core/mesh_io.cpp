@@ -28,8 +28,9 @@
 #include <system_error>
 
 #include "mesh_export_gltf.h"
-#include "primo/error.h"
 #include "mesh_readers.h"
+#include "primo/error.h"
+#include "primo/input_files.h"
 #include "primo/mesh_import.h"
 #include "primo/output_files.h"
 #include "silence_openmesh.h"
@@ -89,32 +90,7 @@ Format format_or_fail(const std::string& path, const std::string& action) {
 std::string in_quotes(std::string_view text) { return detail::quoted(text); }
 
 // ---------------------------------------------------------------------------------------------
-// Reading files and splitting text
-
-// Fails with the system's reason when the file cannot be opened, so that the OpenMesh path (which
-// only says "false") reports the same errors as ours.
-void check_readable(const std::string& path) {
-  std::error_code ignored;
-  if (fs::is_directory(path, ignored)) fail(path, "cannot read: this is a folder, not a file");
-  std::FILE* file = std::fopen(path.c_str(), "rb");
-  if (!file) fail(path, std::string("cannot open: ") + std::strerror(errno));
-  std::fclose(file);
-}
-
-std::string read_file(const std::string& path) {
-  check_readable(path);
-  std::FILE* file = std::fopen(path.c_str(), "rb");
-  if (!file) fail(path, std::string("cannot open: ") + std::strerror(errno));
-  std::string bytes;
-  char buffer[1 << 16];
-  size_t count;
-  while ((count = std::fread(buffer, 1, sizeof buffer, file)) > 0) bytes.append(buffer, count);
-  const bool failed = std::ferror(file) != 0;
-  const int error = errno;
-  std::fclose(file);
-  if (failed) fail(path, std::string("cannot read: ") + std::strerror(error));
-  return bytes;
-}
+// Splitting text into lines
 
 // Physical lines with 1-based numbers, without the line break (LF or CRLF) and without a
 // '#' comment. A UTF-8 byte order mark at the start is skipped.
@@ -551,7 +527,7 @@ Mesh load_mesh(const std::string& path) {
   if (format == Format::Gltf || format == Format::Glb || format == Format::Scene)
     return load_mesh_noted(path).mesh;
   try {
-    return mesh_from_soup(parse_mesh_bytes(read_file(path), path), path);
+    return mesh_from_soup(parse_mesh_bytes(read_input_file(path), path), path);
   } catch (const std::bad_alloc&) {
     fail(path, "cannot read: out of memory");
   }

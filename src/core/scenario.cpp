@@ -8,16 +8,15 @@
 #include <climits>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <initializer_list>
+#include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
 #include <string>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
 #include "primo/error.h"
+#include "primo/input_files.h"
 #include "primo/json_limits.h"
 
 namespace primo {
@@ -661,12 +660,7 @@ std::string signed_axis_name(const SignedAxis& axis) {
 }
 
 Scenario load_scenario(const std::string& path) {
-  std::ifstream file(path, std::ios::binary);
-  if (!file) throw Error(path + ": cannot open the scenario file");
-  std::ostringstream text;
-  text << file.rdbuf();
-  if (file.bad()) throw Error(path + ": cannot read the scenario file");
-  return parse_scenario(text.str(), path);
+  return parse_scenario(read_input_file(path), path);
 }
 
 std::string scenario_to_json(const Scenario& scenario) {

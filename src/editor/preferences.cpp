@@ -3,10 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
 
+#include "primo/error.h"
+#include "primo/input_files.h"
 #include "primo/output_files.h"
 #include "user_folders.h"
 
@@ -45,11 +45,16 @@ std::string preferences_path() { return config_folder() + "/preferences.json"; }
 Preferences load_preferences(const std::string& path) {
   Preferences p;
   const std::string file = path.empty() ? preferences_path() : path;
-  std::ifstream in(file);
-  if (!in) return p;
-  std::stringstream text;
-  text << in.rdbuf();
-  const json j = json::parse(text.str(), nullptr, false);
+  std::error_code ignored;
+  if (!std::filesystem::exists(file, ignored)) return p;  // never saved: the defaults, quietly
+  std::string text;
+  try {
+    text = read_input_file(file);  // a pipe or a device there must not stop the editor starting
+  } catch (const Error& e) {
+    p.problems.push_back(std::string(e.what()) + "; using the defaults");
+    return p;
+  }
+  const json j = json::parse(text, nullptr, false);
   if (!j.is_object()) {
     p.problems.push_back(file + ": not a JSON object; using the defaults");
     return p;

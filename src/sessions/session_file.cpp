@@ -4,12 +4,11 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <initializer_list>
 #include <nlohmann/json.hpp>
-#include <sstream>
 
 #include "primo/error.h"
+#include "primo/input_files.h"
 #include "primo/json_limits.h"
 #include "primo/output_files.h"
 #include "primo/session.h"
@@ -314,14 +313,6 @@ SessionEvent parse_event(const json& j, SessionEvent::Type type) {
   return e;
 }
 
-std::string read_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(path + ": cannot open the session file");
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 }  // namespace
 
 Session parse_session(const std::string& text, const std::string& source) {
@@ -471,7 +462,7 @@ Session parse_session(const std::string& text, const std::string& source) {
   return s;
 }
 
-Session load_session(const std::string& path) { return parse_session(read_file(path), path); }
+Session load_session(const std::string& path) { return parse_session(read_input_file(path), path); }
 
 std::string session_to_json(const Session& s, const std::string& session_path) {
   std::string mesh = s.mesh_path.empty() ? s.mesh : s.mesh_path;
