@@ -29,11 +29,30 @@ std::string printable(const char* message) {
   return out;
 }
 
+// "deform" or "bench drag": the deepest command the command line reached, "" for none.
+std::string command_path(const CLI::App& app) {
+  std::string path;
+  for (const CLI::App* command = &app; !command->get_subcommands().empty();) {
+    command = command->get_subcommands().front();
+    path += (path.empty() ? "" : " ") + command->get_name();
+  }
+  return path;
+}
+
+// A command-line mistake is one line like any other error (CLI11 adds a second, "Run with
+// --help for more information."), naming the command and pointing to its --help.
+std::string one_line_failure(const CLI::App* app, const CLI::Error& e) {
+  const std::string command = command_path(*app);
+  const std::string primo = command.empty() ? "primo" : "primo " + command;
+  return primo + ": error: " + printable(e.what()) + " (see " + primo + " --help)\n";
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"PriMo: coupled prisms for intuitive surface modeling"};
   app.require_subcommand(0, 1);
+  app.failure_message(one_line_failure);  // before the commands, which copy it
   // One option for every command (deform, replay, bench, edit...): given after the command's
   // name too, since the commands fall through to it.
   int threads = 0;
