@@ -1,8 +1,11 @@
-// The command line itself (src/app/main.cpp): a mistake in it is one line naming the command
-// and the option, a non-zero exit and nothing written, like any other error.
+// The command line itself (src/app/main.cpp, src/app/number_options.h): a mistake in it is one
+// line naming the command and the option, a non-zero exit and nothing written, like any other
+// error; number options refuse words, NaN and infinity.
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
+#include <filesystem>
 #include <string>
 
 #include "test_support.h"
@@ -11,6 +14,7 @@ namespace {
 
 using primo::test::CommandResult;
 using primo::test::run_primo;
+namespace fs = std::filesystem;
 
 // Asserts that `primo ARGUMENTS` fails with exactly `line` (and its line break) on stderr.
 void expect_one_line(const std::string& arguments, const std::string& line) {
@@ -47,8 +51,55 @@ TEST(CliOptions, MistakesAreOneLineNamingTheCommandAndTheOption) {
 TEST(CliOptions, HelpIsStillPrintedWithExitZero) {
   const CommandResult r = run_primo("replay --help");
   EXPECT_EQ(r.exit_code, 0);
-  EXPECT_NE(r.out.find("--every"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("--every INT:from 1 to 10000000"), std::string::npos) << r.out;
   EXPECT_TRUE(r.err.empty()) << r.err;
+}
+
+TEST(CliOptions, NumbersMustBeFiniteAndInRange) {
+  // CLI11's Range and PositiveNumber let NaN through, and PositiveNumber infinity.
+  expect_one_line("replay s.json -o o.obj --every nan",
+                  "primo replay: error: --every: expected a number from 1 to 10000000, got nan "
+                  "(see primo replay --help)");
+  expect_one_line("--threads inf deform s.json -o o.obj",
+                  "primo deform: error: --threads: expected a number from 0 to 4096, got inf "
+                  "(see primo deform --help)");
+  expect_one_line("bench drag s.json --drag-prediction nan",
+                  "primo bench drag: error: --drag-prediction: expected a number from 0 to 2, got "
+                  "nan (see primo bench drag --help)");
+  expect_one_line("bench quality --half-thickness -nan",
+                  "primo bench quality: error: --half-thickness: expected a number from 0 to 1, "
+                  "got -nan (see primo bench quality --help)");
+  expect_one_line("edit --timeout 1e999",
+                  "primo edit: error: --timeout: expected a number more than 0 and at most 86400, "
+                  "got 1e999 (see primo edit --help)");
+  expect_one_line("edit --width x",
+                  "primo edit: error: --width: expected a number from 320 to 8192, got x (see "
+                  "primo edit --help)");
+}
+
+TEST(CliOptions, GeneratedMeshesHaveFiniteSizesAndABoundedFaceCount) {
+  const std::string dir = primo::test::temp_dir();
+  // A NaN radius wrote a mesh of NaN vertices, a negative one an inside-out cylinder.
+  for (const char* radius : {"nan", "-1", "0", "inf"})
+    expect_one_line("generate cylinder --radius " + std::string(radius) + " -o " + dir + "/c.obj",
+                    "primo generate cylinder: error: --radius: expected a number more than 0 and "
+                    "at most 1e+15, got " +
+                        std::string(radius) + " (see primo generate cylinder --help)");
+  // Ten billion faces ran until memory ran out.
+  expect_one_line("generate cylinder --segments 100000 --bands 100000 -o " + dir + "/c.obj",
+                  "primo generate: error: " + dir +
+                      "/c.obj: the mesh would have 10000000000 faces, more than 16777216");
+  EXPECT_FALSE(fs::exists(dir + "/c.obj"));
+  EXPECT_TRUE(fs::is_empty(dir));
+}
+
+TEST(CliOptions, AScriptThatIsNotARegularFileIsRefusedBeforeTheWindowOpens) {
+  const std::string dir = primo::test::temp_dir();
+  ASSERT_EQ(0, ::mkfifo((dir + "/script.txt").c_str(), 0600));
+  const CommandResult r = primo::test::run_primo_within(20, "edit --script " + dir + "/script.txt");
+  EXPECT_EQ(r.exit_code, 105) << "124: still running after 20 s";
+  EXPECT_EQ(r.err, "primo edit: error: --script: " + dir +
+                       "/script.txt: not a regular file (a named pipe) (see primo edit --help)\n");
 }
 
 }  // namespace

@@ -10,6 +10,7 @@
 #include "bench/engine_bench.h"
 #include "bench/quality_bench.h"
 #include "commands.h"
+#include "number_options.h"
 
 namespace primo::app {
 namespace {
@@ -32,11 +33,11 @@ CLI::App* add_quality_options(CLI::App& benchmarks, bench::QualityBenchOptions& 
   cmd->add_option("--peer-max-iterations", options.peer.max_iterations,
                   "Iteration cap of the ARAP peers (default 1000; their tolerance, 1e-6, ends "
                   "them earlier)")
-      ->check(CLI::Range(1, 1000000));
+      ->check(finite_range(1, 1000000));
   cmd->add_option("--half-thickness", options.half_thickness,
                   "PriMo's layer half-thickness as a fraction of the bounding-box diagonal "
                   "(default: the product's default material)")
-      ->check(CLI::Range(0.0, 1.0));
+      ->check(finite_range(0.0, 1.0));
   cmd->add_flag("--scenario-material", options.scenario_material,
                 "Use each scenario's own prisms height instead of --half-thickness");
   return cmd;
@@ -64,7 +65,7 @@ Command register_bench(CLI::App& app) {
   drag->add_option("scenario", drag_args->scenario, "Scenario file (primo-scenario/1 JSON)")
       ->required();
   drag->add_option("--frames", drag_args->frames, "Frames from rest to the targets (default 60)")
-      ->check(CLI::Range(1, 100000));
+      ->check(finite_range(1, 100000));
   drag->add_option("--solver", drag_args->solver,
                    "hierarchical (default), global or local; one iteration per frame")
       ->check(CLI::IsMember({"hierarchical", "global", "local"}));
@@ -74,7 +75,7 @@ Command register_bench(CLI::App& app) {
                    "in shared/meshes above the working directory)");
   drag->add_option("--subdivide", drag_args->subdivide,
                    "Loop-subdivide the (triangle) mesh this many times first")
-      ->check(CLI::Range(0, 4));
+      ->check(finite_range(0, 4));
   drag->add_flag("--bbox-handles", drag_args->bbox_handles,
                  "Ignore the scenario's regions, handles and forces: bottom tenth (y) fixed, top "
                  "tenth turned 30 deg about x and moved a tenth of the diagonal along +z");
@@ -82,11 +83,11 @@ Command register_bench(CLI::App& app) {
                    "Measure the lag behind the converged shape every K frames and at the last "
                    "(0: the last only)")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->check(finite_range(0, 100000));  // as --frames
   drag->add_option("--drag-prediction", drag_args->drag_prediction,
                    "Fraction of the last frame's change a frame starts from (0: none)")
       ->capture_default_str()
-      ->check(CLI::Range(0.0, 2.0));
+      ->check(finite_range(0.0, 2.0));
   drag->add_flag("--drag-only", drag_args->drag_only,
                  "Only the frames: no solving on to convergence, no full solve from rest");
   // Experiments with the hierarchical solver's settings (SolveOptions::hierarchical); the
@@ -94,49 +95,48 @@ Command register_bench(CLI::App& app) {
   HierarchicalOptions& h = drag_args->hierarchical;
   const char* group = "Hierarchical solver settings (experiments; default: the core's)";
   drag->add_option("--cluster-size", h.hierarchy.cluster_size, "Bodies per cluster")
-      ->check(CLI::Range(2, 1000))
+      ->check(finite_range(2, 1000))
       ->group(group);
   drag->add_option("--coarsest-max-bodies", h.hierarchy.coarsest_max_bodies,
                    "Coarsen until the coarsest level has at most this many bodies")
-      ->check(CLI::Range(1, 10000000))
+      ->check(finite_range(1, 10000000))
       ->group(group);
   drag->add_option("--fine-sweeps", h.sweeps_per_level, "Local sweeps on the fine level per cycle")
-      ->check(CLI::Range(0, 1000))
+      ->check(finite_range(0, 1000))
       ->group(group);
   drag->add_option("--intermediate-sweeps", h.intermediate_sweeps,
                    "Local sweeps on each intermediate level per cycle")
-      ->check(CLI::Range(0, 1000))
+      ->check(finite_range(0, 1000))
       ->group(group);
   drag->add_option("--coarse-iterations", h.coarse_iterations,
                    "Newton iterations on the coarsest level per cycle")
-      ->check(CLI::Range(0, 1000))
+      ->check(finite_range(0, 1000))
       ->group(group);
   drag->add_option("--intermediate-cycles", h.intermediate_cycles,
                    "Visits of the coarser levels per intermediate level (1: V-cycle, 2: W-cycle)")
-      ->check(CLI::Range(1, 10))
+      ->check(finite_range(1, 10))
       ->group(group);
   drag->add_option("--intermediate-relaxation", h.intermediate_relaxation,
                    "Over-relaxation factor of intermediate sweeps (1: plain Gauss-Seidel)")
-      ->check(CLI::Range(1.0, 1.99))
+      ->check(finite_range(1.0, 1.99))
       ->group(group);
   drag->add_option("--acceleration-history", h.acceleration_history,
                    "Anderson acceleration over this many cycles within one solve (0: off)")
-      ->check(CLI::Range(0, 50))
+      ->check(finite_range(0, 50))
       ->group(group);
   drag->add_option("--coarse-factor-reuse", h.coarse_factor_reuse,
                    "Coarse Newton steps per numeric factorization, beyond the first")
-      ->check(CLI::Range(0, 100000))
+      ->check(finite_range(0, 100000))
       ->group(group);
   drag->add_option("--drag-factor-reuse", h.drag_factor_reuse,
                    "During a drag: coarse Newton steps per numeric factorization, beyond the first")
-      ->check(CLI::Range(0, 100000))
+      ->check(finite_range(0, 100000))
       ->group(group);
   drag->add_option("--drag-factor-lag", h.drag_factor_lag,
                    "During a drag: coarse steps a background refactorization has before its "
                    "factor takes over (-1: automatic, 0: refactorize in the foreground)")
-      ->check(CLI::Range(-1, 100000))
+      ->check(finite_range(-1, 100000))
       ->group(group);
-
 
   auto quality_args = std::make_shared<bench::QualityBenchOptions>();
   CLI::App* quality = add_quality_options(*benchmarks, *quality_args);

@@ -2,29 +2,30 @@
 // `primo` with no arguments: the interactive editor (docs/editor.md).
 
 #include <CLI/CLI.hpp>
-#include <cmath>
-#include <cstdlib>
 #include <memory>
 
 #include "app.h"
 #include "commands.h"
+#include "number_options.h"
 #include "paths.h"
+#include "primo/error.h"
+#include "primo/input_files.h"
 
 namespace primo::app {
 namespace {
 
-// More than 0 and at most a day, as a script's waits. CLI11's ranges let "nan" through, and a
-// timeout of nan or 1e300 would never run out.
-const CLI::Validator kTimeoutSeconds(
-    [](std::string& text) -> std::string {
-      char* end = nullptr;
-      const double seconds = std::strtod(text.c_str(), &end);
-      if (end == text.c_str() || *end != '\0' || !std::isfinite(seconds) || seconds <= 0.0 ||
-          seconds > 86400.0)
-        return "expected seconds, more than 0 and at most 86400, got " + text;
+// The script is read by the window before anything opens; a named pipe or a device there
+// would block it, so the file is checked here as every input is (primo/input_files.h).
+const CLI::Validator kInputFile(
+    [](std::string& path) -> std::string {
+      try {
+        check_input_file(path);
+      } catch (const Error& e) {
+        return e.what();
+      }
       return "";
     },
-    "SECONDS");
+    "FILE");
 
 }  // namespace
 
@@ -40,13 +41,13 @@ Command register_edit(CLI::App& app) {
   cmd->add_flag("--screenshot-ui", options->screenshot_ui, "Include the panels in the screenshot");
   cmd->add_option("--script", options->script,
                   "Play timed input events and commands from a file (docs/editor.md)")
-      ->check(CLI::ExistingFile);
-  cmd->add_option("--width", options->width, "Window width")->check(CLI::Range(320, 8192));
-  cmd->add_option("--height", options->height, "Window height")->check(CLI::Range(240, 8192));
+      ->check(kInputFile);
+  cmd->add_option("--width", options->width, "Window width")->check(finite_range(320, 8192));
+  cmd->add_option("--height", options->height, "Window height")->check(finite_range(240, 8192));
   cmd->add_option("--timeout", options->timeout,
                   "Seconds a --screenshot or --script run may take (default 300): then exit 1, "
                   "unsaved work autosaved")
-      ->check(kTimeoutSeconds);
+      ->check(finite_positive(86400));  // at most a day, as a script's waits
   return {cmd, [options] {
             editor::EditorOptions o = *options;
             if (o.input.empty()) o.input = editor::default_mesh_path();

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "commands.h"
+#include "number_options.h"
 #include "primo/error.h"
 #include "primo/parallel.h"
 
@@ -59,7 +60,7 @@ int main(int argc, char** argv) {
   app.add_option("--threads", threads,
                  "Threads the solver may use (default 0: every core). Results are the same "
                  "on any number of threads.")
-      ->check(CLI::Range(0, 4096));
+      ->check(primo::app::finite_range(0, 4096));
   app.fallthrough();
   const std::vector<primo::app::Command> commands = {
       primo::app::register_edit(app), primo::app::register_deform(app),

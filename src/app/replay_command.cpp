@@ -14,11 +14,11 @@
 #include <filesystem>
 #include <memory>
 #include <new>
-#include <vector>
 #include <nlohmann/json.hpp>
+#include <vector>
 
 #include "commands.h"
-#include "rethrow_naming.h"
+#include "number_options.h"
 #include "primo/error.h"
 #include "primo/mesh_import.h"
 #include "primo/mesh_io.h"
@@ -26,6 +26,7 @@
 #include "primo/session.h"
 #include "primo/session_mapping.h"
 #include "primo/session_replay.h"
+#include "rethrow_naming.h"
 
 namespace primo::app {
 namespace {
@@ -172,14 +173,15 @@ Command register_replay(CLI::App& app) {
                   "Format of the --frames meshes: obj (default), off, ply, stl, om, gltf or glb")
       ->check(CLI::IsMember({"obj", "off", "ply", "stl", "om", "gltf", "glb"}));
   cmd->add_option("--every", args->every, "Frame step for --frames (default 1)")
-      ->check(CLI::PositiveNumber);
+      ->check(finite_range(1, kMaxSessionFrame));
   cmd->add_option("--iterations-per-frame", args->iterations_per_frame,
                   "Solver iterations after each frame (default 1, as the editor while dragging)")
-      ->check(CLI::Range(1, 1000));
-  cmd->add_option("--threads", args->threads,
-                  "BLAS/OpenMP threads (default 1: bitwise the same result on every machine; 0: "
-                  "the libraries' default, faster on big meshes but machine-dependent in the last bits)")
-      ->check(CLI::Range(0, 1024));
+      ->check(finite_range(1, 1000));
+  cmd->add_option(
+         "--threads", args->threads,
+         "BLAS/OpenMP threads (default 1: bitwise the same result on every machine; 0: "
+         "the libraries' default, faster on big meshes but machine-dependent in the last bits)")
+      ->check(finite_range(0, 1024));
   cmd->add_option("--mesh", args->mesh,
                   "Replay on this finer version of the recorded mesh (e.g. subdivided): faces are "
                   "matched by nearest centroid");
