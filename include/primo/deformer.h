@@ -185,6 +185,9 @@ class Deformer {
   SolveReport solve_now(const SolveOptions& options);
   // Starts a drag's frame from the predicted state (SolveOptions::drag_prediction).
   void predict_drag(double multiplier);
+  // Starts from `predictor`'s prediction for a target move `move`, where it lowers the energy,
+  // and remembers the state for the next one.
+  void predict(DragPredictor& predictor, const std::vector<double>& move, double multiplier);
   // How the targets moved since the state was solved: per handle, what it prescribes of its
   // centre's move and its turn, and per force its offset's move, each over the path's
   // sub-step limits (PathOptions) so that entries weigh alike.

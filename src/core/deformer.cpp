@@ -265,22 +265,26 @@ void Deformer::predict_drag(double multiplier) {
     predictor_.forget();
     return;
   }
-  const std::vector<double> move = target_move();
-  const double fraction = predictor_.fraction(move, multiplier);
+  predict(predictor_, target_move(), multiplier);
+}
+
+void Deformer::predict(DragPredictor& predictor, const std::vector<double>& move,
+                       double multiplier) {
+  const double fraction = predictor.fraction(move, multiplier);
   const double now = fraction > 0.0 ? energy() : 0.0;
   if (fraction > 0.0 && std::isfinite(now)) {
-    predictor_.predict(system_, state_, fraction, predicted_);
+    predictor.predict(system_, state_, fraction, predicted_);
     const double predicted = system_.energy(predicted_);
     // Where the prediction does not lower the energy (the drag turned, the minimum jumped),
     // the frame starts where the last one ended, as without it.
     if (predicted < now) {
       state_.swap(predicted_);
       known_energy_ = predicted;
-      predictor_.take(move, predicted_);  // the state before the prediction, without a copy
+      predictor.take(move, predicted_);  // the state before the prediction, without a copy
       return;
     }
   }
-  predictor_.remember(move, state_);
+  predictor.remember(move, state_);
 }
 
 SolveReport Deformer::solve(const SolveOptions& options) {
@@ -449,6 +453,11 @@ bool Deformer::follow_path(const SolveOptions& options, SolveReport& report) {
   const std::vector<RigidTransform> from = solved_transforms_;
   const std::vector<Vec3> from_offsets = solved_offsets_;
   int budget = options.path.max_iterations;
+  // The sub-steps are the frames of a drag at a steady pace: each starts from the state
+  // carried on by the last one's change (DragPredictor), from the second on. A path resumed
+  // by a later call starts its record anew.
+  DragPredictor predictor;
+  const std::vector<double> step_move{1.0};  // equal sub-steps
   for (int k = 1; k < steps; ++k) {
     if (budget <= 0) return false;  // resumed from solved_transforms_ by the next call
     const double s = double(k) / steps;
@@ -463,6 +472,7 @@ bool Deformer::follow_path(const SolveOptions& options, SolveReport& report) {
       place_springs(solved_offsets_);
       problem_changed();
     }
+    if (options.drag_prediction > 0.0) predict(predictor, step_move, options.drag_prediction);
     double e = energy();
     --budget;  // a sub-step counts even when its first iteration finds no decrease
     for (int it = 0; it < options.path.max_step_iterations; ++it) {
@@ -487,6 +497,7 @@ bool Deformer::follow_path(const SolveOptions& options, SolveReport& report) {
     rebuild_springs();
     problem_changed();
   }
+  if (options.drag_prediction > 0.0) predict(predictor, step_move, options.drag_prediction);
   return true;
 }
 
