@@ -12,20 +12,20 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <optional>
-#include <sstream>
 #include <thread>
 
 #include "autosave.h"
 #include "editor.h"
 #include "face_colors.h"
+#include "frame_pacer.h"
 #include "gl.h"
 #include "ground_grid.h"
 #include "panels.h"
 #include "paths.h"
 #include "preferences_window.h"
 #include "primo/error.h"
+#include "primo/input_files.h"
 #include "renderer.h"
 #include "run_deadline.h"
 #include "screenshot.h"
@@ -41,7 +41,6 @@ std::atomic<bool> g_termination_requested{false};
 extern "C" void on_termination_signal(int) { g_termination_requested = true; }
 
 std::string g_glfw_error;
-constexpr double kFrameSeconds = 1.0 / 60.0;
 
 void glfw_error(int code, const char* description) {
   char text[64];
@@ -155,6 +154,7 @@ class App : public ScriptHost {
   const ProxyTriangles* shown_proxy_ = nullptr;       // null until the document's proxy is built
   std::optional<ModelOrientation> grid_orientation_;  // of the ground grid drawn (none yet)
   int settled_frames_ = 0;
+  FramePacer pacer_;
   bool screenshot_run_ = false;
   size_t errors_seen_ = 0;
   std::string shown_title_;
@@ -496,11 +496,8 @@ int App::run() {
   editor_.set_picker(renderer_.get());
   if (!options_.script.empty()) {
     try {
-      std::ifstream in(options_.script);
-      if (!in) throw Error(options_.script + ": cannot read the script");
-      std::stringstream text;
-      text << in.rdbuf();
-      script_ = std::make_unique<ScriptPlayer>(parse_script(text.str(), options_.script));
+      script_ = std::make_unique<ScriptPlayer>(
+          parse_script(read_input_file(options_.script), options_.script));
     } catch (const std::exception& e) {
       std::fprintf(stderr, "primo edit: error: %s\n", e.what());
       return 2;
@@ -542,10 +539,11 @@ int App::run() {
       editor_.mark_idle_wait();
     }
     double now = glfwGetTime();
-    // At most about 60 frames a second while animating (what vsync does on a real display;
-    // Xvfb has none): the rest of the CPU goes to the solver.
-    if (animate && now - last < kFrameSeconds) {
-      std::this_thread::sleep_for(std::chrono::duration<double>(kFrameSeconds - (now - last)));
+    // At most about 60 frames a second while animating, fewer while the solver works and
+    // drawing is slow (FramePacer): the rest of the CPU goes to the solver.
+    const double interval = pacer_.interval(editor_.solver_status().busy());
+    if (animate && now - last < interval) {
+      std::this_thread::sleep_for(std::chrono::duration<double>(interval - (now - last)));
       now = glfwGetTime();
     }
     const double dt = now - last;
@@ -553,6 +551,7 @@ int App::run() {
 
     try {
       frame(now, dt);
+      pacer_.frame_drawn(glfwGetTime() - now);
     } catch (const std::exception& e) {
       // A bug must not take the user's work down: report it and go on with the next frame.
       if (ImGui::GetCurrentContext()->WithinFrameScope) {
