@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+
 #include <filesystem>
 #include <glm/gtc/constants.hpp>
 
@@ -18,6 +20,7 @@
 #include "scenario_bridge.h"
 #include "test_support.h"
 
+namespace fs = std::filesystem;
 using namespace primo;
 using namespace primo::editor;
 
@@ -129,6 +132,16 @@ TEST(EditorOrientation, ComesFromTheFormatOrAnOrientationFile) {
   } catch (const Error& e) {
     const std::string m = e.what();
     EXPECT_NE(m.find("bar.orientation.json: front: expected"), std::string::npos) << m;
+  }
+  // A named pipe under the sidecar's name is refused at once, not waited on.
+  fs::remove(dir + "/bar.orientation.json");
+  ASSERT_EQ(0, ::mkfifo((dir + "/bar.orientation.json").c_str(), 0600));
+  try {
+    mesh_orientation(dir + "/bar.obj");
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("bar.orientation.json: not a regular file (a named pipe)"), std::string::npos) << m;
   }
 }
 

@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+
 #include <chrono>
 #include <filesystem>
 #include <thread>
@@ -163,6 +165,11 @@ TEST(EditorUnsavedWork, RecentFilesAreNewestFirstUniqueAndBounded) {
   // A broken list is an empty one, not an error.
   test::write_text(list, "{not json");
   EXPECT_TRUE(RecentFiles(list).entries().empty());
+  // So is a named pipe in its place, which must not hold the editor's start.
+  fs::remove(list);
+  ASSERT_EQ(0, ::mkfifo(list.c_str(), 0600));
+  EXPECT_TRUE(RecentFiles(list).entries().empty());
+  fs::remove(list);
   // The editor adds what it opens and saves.
   Posed p;
   ASSERT_TRUE(p.e.save_scenario(p.dir + "/pose.json"));

@@ -4,10 +4,9 @@
 #include <cctype>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 
 #include "primo/error.h"
+#include "primo/input_files.h"
 
 namespace primo::editor {
 namespace fs = std::filesystem;
@@ -54,12 +53,10 @@ std::string orientation_file_path(const std::string& mesh_path) {
 
 ModelOrientation mesh_orientation(const std::string& mesh_path) {
   const std::string file = orientation_file_path(mesh_path);
-  std::ifstream in(file, std::ios::binary);
-  if (!in) return format_orientation(mesh_path);
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw Error(file + ": cannot read the orientation file");
-  return parse_model_orientation(text.str(), file);
+  std::error_code ec;
+  if (file.empty() || !fs::exists(file, ec)) return format_orientation(mesh_path);
+  // Through read_input_file: a pipe or device under the sidecar's name must not block.
+  return parse_model_orientation(read_input_file(file), file);
 }
 
 ModelOrientation orientation_from_view(const glm::dvec3& towards_eye, const glm::dvec3& camera_up) {

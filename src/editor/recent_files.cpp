@@ -2,10 +2,10 @@
 
 #include <algorithm>
 #include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
 
+#include "primo/error.h"
+#include "primo/input_files.h"
 #include "primo/output_files.h"
 #include "user_folders.h"
 
@@ -14,11 +14,15 @@ namespace fs = std::filesystem;
 
 RecentFiles::RecentFiles(std::string path)
     : path_(path.empty() ? config_folder() + "/recent.json" : std::move(path)) {
-  std::ifstream in(path_);
-  if (!in) return;
-  std::stringstream text;
-  text << in.rdbuf();
-  const nlohmann::json j = nlohmann::json::parse(text.str(), nullptr, false);
+  std::error_code ec;
+  if (!fs::exists(path_, ec)) return;
+  std::string text;
+  try {
+    text = read_input_file(path_);  // a pipe or device in its place must not block the start
+  } catch (const Error&) {
+    return;  // the list is a convenience: unreadable, it starts empty
+  }
+  const nlohmann::json j = nlohmann::json::parse(text, nullptr, false);
   if (!j.is_object() || !j.contains("files") || !j["files"].is_array()) return;
   for (const auto& f : j["files"])
     if (f.is_string() && entries_.size() < kMaxEntries) entries_.push_back(f.get<std::string>());
