@@ -1,7 +1,10 @@
-// Mesh files. OBJ and OFF are read and written here, in double precision: OpenMesh 9 reads both
-// (and writes OBJ) through float, which would move every vertex by up to 1e-8 relative. PLY,
-// STL, OM and binary OFF go through OpenMesh. Whatever the format, the result is validated by
-// mesh_from_soup, so every format is held to the same rules.
+// Mesh files. Every format is read by PriMo's own readers (OBJ and OFF here, in double
+// precision: OpenMesh 9 reads both through float, which would move every vertex by up to 1e-8
+// relative; PLY, STL, OM and binary OFF in mesh_readers.cpp, because OpenMesh's readers crash
+// or hang on hostile bytes, docs/mesh-io.md), scene formats through Assimp; input files are
+// opened through read_input_file. OBJ and OFF are written here, PLY, STL and OM through
+// OpenMesh's writers. Whatever the format, the result is validated by mesh_from_soup, so every
+// format is held to the same rules.
 
 // OpenMesh's IO must be included before the mesh type (it registers readers and writers).
 // clang-format off
