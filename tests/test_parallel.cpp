@@ -83,3 +83,31 @@ TEST(Parallel, SolvesGiveIdenticalVerticesOnOneTwoThreeAndEightThreads) {
           << ": " << primo::test::max_distance(results[k], results[0]);
   }
 }
+
+TEST(Parallel, DragFramesGiveIdenticalVerticesOnOneTwoThreeAndEightThreads) {
+  // The frames of a drag add the prediction's passes (drag_predictor.h) to the cycles.
+  std::vector<RigidTransform> frames;
+  for (int k = 1; k <= 4; ++k)
+    frames.push_back(test::bent_cylinder(96, 200, 10.0 * k).handles[1].transform);
+  const test::BentCylinder c = test::bent_cylinder(96, 200, 0.0);
+  std::vector<std::vector<Vec3>> results;
+  for (int threads : {1, 2, 3, 8}) {
+    ThreadCount count(threads);
+    Deformer d(c.mesh, PrismParameters{}, c.handles);
+    SolveOptions o;
+    o.method = SolveMethod::Hierarchical;
+    o.max_iterations = 1;
+    o.tolerance = 0.0;
+    int predicted = 0;
+    for (const RigidTransform& t : frames) {
+      d.set_handle_transform(1, t);
+      const double unpredicted = d.energy();
+      predicted += d.solve(o).initial_energy < unpredicted;
+    }
+    EXPECT_EQ(predicted, 3) << threads << " threads";  // every frame but the first
+    results.push_back(d.vertex_positions());
+  }
+  for (size_t k = 1; k < results.size(); ++k)
+    EXPECT_TRUE(same_bits(results[k], results[0]))
+        << "thread count #" << k << ": " << primo::test::max_distance(results[k], results[0]);
+}
