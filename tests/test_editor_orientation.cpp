@@ -7,6 +7,7 @@
 #include <sys/stat.h>
 
 #include <filesystem>
+#include <functional>
 #include <glm/gtc/constants.hpp>
 
 #include "document.h"
@@ -124,25 +125,24 @@ TEST(EditorOrientation, ComesFromTheFormatOrAnOrientationFile) {
   const auto doc = load_document(dir + "/bar.obj");
   EXPECT_EQ(doc->state.orientation, orientation("+x", "+y"));
   EXPECT_EQ(doc->saved_state, doc->state) << "as opened: nothing to save";
+  // The message of the Error `open` throws ("no error" when it throws none).
+  auto error_of = [](const std::function<void()>& open) -> std::string {
+    try {
+      open();
+    } catch (const Error& e) {
+      return e.what();
+    }
+    return "no error";
+  };
   // A broken file is an error naming it and the key.
   test::write_text(dir + "/bar.orientation.json", R"({"up": "+x", "front": "x"})");
-  try {
-    load_document(dir + "/bar.obj");
-    ADD_FAILURE() << "no error";
-  } catch (const Error& e) {
-    const std::string m = e.what();
-    EXPECT_NE(m.find("bar.orientation.json: front: expected"), std::string::npos) << m;
-  }
+  std::string m = error_of([&] { load_document(dir + "/bar.obj"); });
+  EXPECT_NE(m.find("bar.orientation.json: front: expected"), std::string::npos) << m;
   // A named pipe under the sidecar's name is refused at once, not waited on.
   fs::remove(dir + "/bar.orientation.json");
   ASSERT_EQ(0, ::mkfifo((dir + "/bar.orientation.json").c_str(), 0600));
-  try {
-    mesh_orientation(dir + "/bar.obj");
-    ADD_FAILURE() << "no error";
-  } catch (const Error& e) {
-    const std::string m = e.what();
-    EXPECT_NE(m.find("bar.orientation.json: not a regular file (a named pipe)"), std::string::npos) << m;
-  }
+  m = error_of([&] { mesh_orientation(dir + "/bar.obj"); });
+  EXPECT_NE(m.find("bar.orientation.json: not a regular file (a named pipe)"), std::string::npos) << m;
 }
 
 // Spot faces -z: its head (the top fifth) lies on the front side of its body, and the editor
