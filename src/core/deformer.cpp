@@ -144,6 +144,7 @@ Deformer& Deformer::operator=(Deformer&& other) noexcept {
   known_energy_ = other.known_energy_;
   solved_transforms_ = std::move(other.solved_transforms_);
   solved_offsets_ = std::move(other.solved_offsets_);
+  predictor_.forget();  // the last frame was another deformer's
   global_.reset();
   hierarchical_.reset();
   other.global_.reset();
