@@ -95,21 +95,11 @@ std::vector<int> face_list(const py::object& faces) {
   return out;
 }
 
-Fix fix_from_name(const std::string& name) {
-  if (name == "all") return Fix::All;
-  if (name == "position") return Fix::Position;
-  if (name == "orientation") return Fix::Orientation;
+Fix fix_named(const std::string& name) {
+  if (const std::optional<Fix> fix = fix_from_name(name)) return *fix;
   throw py::value_error("fix: expected \"all\", \"position\" or \"orientation\", got \"" + name + "\"");
 }
 
-const char* fix_name(Fix fix) {
-  switch (fix) {
-    case Fix::Position: return "position";
-    case Fix::Orientation: return "orientation";
-    case Fix::All: break;
-  }
-  return "all";
-}
 
 // A transform from keyword arguments: a 4x4 matrix, or translate / axis / angle_deg / center
 // (the scenario format's transform).
@@ -272,7 +262,7 @@ PYBIND11_MODULE(primo, m) {
       .def(py::init([](const py::object& faces, const std::string& fix, const std::string& name) {
              Handle h;
              h.faces = face_list(faces);
-             h.fix = fix_from_name(fix);
+             h.fix = fix_named(fix);
              h.name = name;
              return h;
            }),

@@ -2,7 +2,9 @@
 // What a user asks of a deformation: prism parameters, handles and forces, with faces already
 // resolved to indices. Both the scenario loader and the editor produce these.
 
+#include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "primo/types.h"
@@ -63,6 +65,11 @@ enum class Fix {
   Position,     // area-weighted centroid prescribed, orientation optimized
   Orientation,  // rotation prescribed, translation optimized
 };
+
+// The scenario format's name of a mode: "all", "position" or "orientation".
+const char* fix_name(Fix fix);
+// The mode of that name; nullopt for any other.
+std::optional<Fix> fix_from_name(std::string_view name);
 
 // One rigid group of faces. `transform` moves the group from its rest pose to its target.
 struct Handle {

@@ -20,4 +20,19 @@ RigidTransform make_rigid_transform(const Vec3& translate, const Vec3& axis, dou
   return t;
 }
 
+const char* fix_name(Fix fix) {
+  switch (fix) {
+    case Fix::All: return "all";
+    case Fix::Position: return "position";
+    case Fix::Orientation: return "orientation";
+  }
+  return "all";
+}
+
+std::optional<Fix> fix_from_name(std::string_view name) {
+  for (const Fix fix : {Fix::All, Fix::Position, Fix::Orientation})
+    if (name == fix_name(fix)) return fix;
+  return std::nullopt;
+}
+
 }  // namespace primo

@@ -359,9 +359,7 @@ RegionSpec read_region(const ScenarioReader& in, const Json& value, const std::s
 
 Fix read_fix(const ScenarioReader& in, const Json& value, const std::string& path) {
   const std::string fix = in.string(value, path);
-  if (fix == "all") return Fix::All;
-  if (fix == "position") return Fix::Position;
-  if (fix == "orientation") return Fix::Orientation;
+  if (const std::optional<Fix> f = fix_from_name(fix)) return *f;
   in.fail(path, "expected \"all\", \"position\" or \"orientation\", got \"" + fix + "\"");
 }
 
@@ -605,15 +603,6 @@ Json selection_json(const Selection& s, const std::string& path) {
       break;
   }
   return out;
-}
-
-const char* fix_name(Fix fix) {
-  switch (fix) {
-    case Fix::All: return "all";
-    case Fix::Position: return "position";
-    case Fix::Orientation: return "orientation";
-  }
-  return "all";
 }
 
 }  // namespace
