@@ -7,7 +7,6 @@
 #include <fcntl.h>
 #include <gtest/gtest.h>
 #include <signal.h>
-#include <sys/resource.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -156,23 +155,18 @@ TEST_F(Faults, FullDiskMidWrite) {
   // A write that runs out of room (RLIMIT_FSIZE, as a full disk does): the target keeps its old
   // bytes, nothing else is left, and the message names the target.
   const primo::Mesh big = primo::load_mesh(dir + "/cube.obj");
-  rlimit old_limit;
-  ASSERT_EQ(0, getrlimit(RLIMIT_FSIZE, &old_limit));
-  rlimit small = old_limit;
-  small.rlim_cur = 100;
-  const auto old_handler = std::signal(SIGXFSZ, SIG_IGN);
-  ASSERT_EQ(0, setrlimit(RLIMIT_FSIZE, &small));
   std::string message;
-  try {
-    primo::StagedOutputs out;
-    out.stage_mesh(dir + "/existing.obj", big);
-    out.stage(dir + "/s.json", std::string(1000, 'x'));
-    out.commit();
-  } catch (const primo::Error& e) {
-    message = e.what();
+  {
+    const primo::test::FileSizeLimit limit(100);
+    try {
+      primo::StagedOutputs out;
+      out.stage_mesh(dir + "/existing.obj", big);
+      out.stage(dir + "/s.json", std::string(1000, 'x'));
+      out.commit();
+    } catch (const primo::Error& e) {
+      message = e.what();
+    }
   }
-  setrlimit(RLIMIT_FSIZE, &old_limit);
-  std::signal(SIGXFSZ, old_handler);
   EXPECT_NE(std::string::npos, message.find("cannot save")) << message;
   EXPECT_EQ("keep me", read_text(dir + "/existing.obj"));
   EXPECT_EQ((std::vector<std::string>{"cube.obj", "existing.obj", "s.json"}), entries(dir));

@@ -5,10 +5,8 @@
 // clang-format on
 
 #include <gtest/gtest.h>
-#include <sys/resource.h>
 
 #include <cmath>
-#include <csignal>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
@@ -612,20 +610,15 @@ TEST(MeshIoSave, FailedWriteKeepsTheExistingFile) {
     const std::string path = folder + "/" + name;
     write_text(path, "keep me");
 
-    rlimit old_limit;
-    ASSERT_EQ(0, getrlimit(RLIMIT_FSIZE, &old_limit));
-    rlimit small_limit = old_limit;
-    small_limit.rlim_cur = 4096;
-    const auto old_handler = std::signal(SIGXFSZ, SIG_IGN);
-    ASSERT_EQ(0, setrlimit(RLIMIT_FSIZE, &small_limit));
     std::string message;
-    try {
-      primo::save_mesh(mesh, path);
-    } catch (const primo::Error& e) {
-      message = e.what();
+    {
+      const primo::test::FileSizeLimit limit(4096);
+      try {
+        primo::save_mesh(mesh, path);
+      } catch (const primo::Error& e) {
+        message = e.what();
+      }
     }
-    setrlimit(RLIMIT_FSIZE, &old_limit);
-    std::signal(SIGXFSZ, old_handler);
 
     expect_mentions(message, {path, "cannot save"});
     EXPECT_EQ("keep me", read_text(path)) << name;

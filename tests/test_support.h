@@ -14,6 +14,20 @@ bool exists(const std::string& path);
 // A fresh, empty directory under the system temp dir, unique per call; removed when the test
 // process exits (kept when PRIMO_KEEP_TEST_FILES is set).
 std::string temp_dir();
+// While it lives, files this process writes stop growing at `bytes` (RLIMIT_FSIZE), as on a
+// full disk, and SIGXFSZ is ignored so that the write fails instead of killing the test; both
+// are restored when it goes. Throws std::runtime_error when the limit cannot be set.
+class FileSizeLimit {
+ public:
+  explicit FileSizeLimit(unsigned long long bytes);
+  ~FileSizeLimit();
+  FileSizeLimit(const FileSizeLimit&) = delete;
+  FileSizeLimit& operator=(const FileSizeLimit&) = delete;
+
+ private:
+  unsigned long long old_soft_limit_ = 0;
+  void (*old_handler_)(int) = nullptr;
+};
 // Writes `text` to `path` (truncating).
 void write_text(const std::string& path, const std::string& text);
 // The whole file, byte for byte ("" when it cannot be read).
