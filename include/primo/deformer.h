@@ -183,15 +183,14 @@ class Deformer {
   std::optional<double> guarded_iterate(const SolveOptions& options, double e, SolveReport& report);
   // solve() after the drag prediction: the stages of a solve at the set targets.
   SolveReport solve_now(const SolveOptions& options);
-  // Starts a drag's frame from the predicted state (SolveOptions::drag_prediction).
-  void predict_drag(double multiplier);
   // Starts from `predictor`'s prediction for a target move `move`, where it lowers the energy,
   // and remembers the state for the next one.
   void predict(DragPredictor& predictor, const std::vector<double>& move, double multiplier);
-  // How the targets moved since the state was solved: per handle, what it prescribes of its
-  // centre's move and its turn, and per force its offset's move, each over the path's
-  // sub-step limits (PathOptions) so that entries weigh alike.
-  std::vector<double> target_move() const;
+  // How the targets moved since the state was solved, in pieces of 3 entries: per handle
+  // what it prescribes of its centre's move and of its turn (axis times angle), per force its
+  // offset's move, each over the sub-step limit of `limits`, so that a piece's length is the
+  // sub-steps it needs and entries weigh alike (the drag predictor compares moves by them).
+  std::vector<double> target_move(const PathOptions& limits) const;
   bool make_solver(const SolveOptions& options);  // whether it was made now
   double body_energy(int body) const;  // of the joints and springs on one body
   void rebuild_springs();

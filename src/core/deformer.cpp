@@ -48,8 +48,15 @@ RigidTransform interpolate(const RigidTransform& from, const RigidTransform& to,
   return t;
 }
 
-double turn_degrees(const RigidTransform& from, const RigidTransform& to) {
-  return Eigen::AngleAxisd(to.rotation * from.rotation.transpose()).angle() * 180.0 / M_PI;
+// Sub-steps a target move needs (Deformer::target_move): its longest piece, rounded up, at
+// least 1. Not finite only for non-finite targets, which the solve will reject on its own.
+// At most kMaxPathSteps: a move of 100 bounding-box diagonals already takes 1,000, and a huge
+// one (1e6 diagonals) would otherwise take a million sub-steps, each a factorization.
+int path_steps(const std::vector<double>& move) {
+  double steps = 1.0;
+  for (size_t i = 0; i + 2 < move.size(); i += 3)
+    steps = std::max(steps, Vec3(move[i], move[i + 1], move[i + 2]).norm());
+  return std::isfinite(steps) ? int(std::min(std::ceil(steps - 1e-9), double(kMaxPathSteps))) : 1;
 }
 
 }  // namespace
@@ -234,40 +241,28 @@ void Deformer::set_force_offset(int force, const Vec3& target_offset) {
   rebuild_springs();
 }
 
-std::vector<double> Deformer::target_move() const {
-  const PathOptions limits;
+std::vector<double> Deformer::target_move(const PathOptions& limits) const {
   const double move = limits.max_move * layer_.bounding_box_diagonal;
   std::vector<double> d;
   d.reserve(6 * handles_.size() + 3 * forces_.size());
+  auto add = [&d](const Vec3& piece) { d.insert(d.end(), {piece.x(), piece.y(), piece.z()}); };
   for (size_t h = 0; h < handles_.size(); ++h) {
     const RigidTransform& from = solved_transforms_[h];
     const RigidTransform& to = handles_[h].transform;
     const Vec3& center = system_.bodies[h].rest_center;
     const Fix fix = handles_[h].fix;
-    if (fix != Fix::Orientation) {
-      const Vec3 shift = (to.apply(center) - from.apply(center)) / move;
-      d.insert(d.end(), {shift.x(), shift.y(), shift.z()});
-    }
+    if (fix != Fix::Orientation) add((to.apply(center) - from.apply(center)) / move);
     if (fix != Fix::Position) {
       const Eigen::AngleAxisd turn(Mat3(to.rotation * from.rotation.transpose()));
-      const Vec3 v = turn.axis() * (turn.angle() * 180.0 / M_PI / limits.max_turn_deg);
-      d.insert(d.end(), {v.x(), v.y(), v.z()});
+      add(turn.axis() * (turn.angle() * 180.0 / M_PI / limits.max_turn_deg));
     }
   }
-  for (size_t f = 0; f < forces_.size(); ++f) {
-    const Vec3 shift = (forces_[f].target_offset - solved_offsets_[f]) / move;
-    d.insert(d.end(), {shift.x(), shift.y(), shift.z()});
-  }
+  for (size_t f = 0; f < forces_.size(); ++f)
+    add((forces_[f].target_offset - solved_offsets_[f]) / move);
   return d;
 }
 
-void Deformer::predict_drag(double multiplier) {
-  if (!(multiplier > 0.0)) {
-    predictor_.forget();
-    return;
-  }
-  predict(predictor_, target_move(), multiplier);
-}
+
 
 void Deformer::predict(DragPredictor& predictor, const std::vector<double>& move,
                        double multiplier) {
@@ -289,12 +284,14 @@ void Deformer::predict(DragPredictor& predictor, const std::vector<double>& move
 }
 
 SolveReport Deformer::solve(const SolveOptions& options) {
-  // A jump followed in sub-steps is a continuation of its own: a prediction on top would put
-  // the state ahead of the sub-steps' targets, and its change would be no frame of a drag.
-  if (path_pending(options.path))
-    predictor_.forget();
+  // A drag's frame starts from the predicted state (SolveOptions::drag_prediction). A jump
+  // followed in sub-steps is a continuation of its own: a prediction on top would put the
+  // state ahead of the sub-steps' targets, and its change would be no frame of a drag.
+  const std::vector<double> move = target_move(options.path);
+  if (options.drag_prediction > 0.0 && !(options.path.enabled && path_steps(move) > 1))
+    predict(predictor_, move, options.drag_prediction);
   else
-    predict_drag(options.drag_prediction);
+    predictor_.forget();
   return solve_now(options);
 }
 
@@ -423,25 +420,7 @@ std::optional<double> Deformer::iterate(const SolveOptions& options, double e,
 }
 
 int Deformer::path_steps_needed(const PathOptions& options) const {
-  if (!options.enabled) return 1;
-  const double move = options.max_move * layer_.bounding_box_diagonal;
-  double steps = 1.0;
-  for (size_t h = 0; h < handles_.size(); ++h) {
-    const RigidTransform& from = solved_transforms_[h];
-    const RigidTransform& to = handles_[h].transform;
-    const Vec3& center = system_.bodies[h].rest_center;
-    const Fix fix = handles_[h].fix;
-    if (fix != Fix::Position)
-      steps = std::max(steps, turn_degrees(from, to) / options.max_turn_deg);
-    if (fix != Fix::Orientation)
-      steps = std::max(steps, (to.apply(center) - from.apply(center)).norm() / move);
-  }
-  for (size_t f = 0; f < forces_.size(); ++f)
-    steps = std::max(steps, (forces_[f].target_offset - solved_offsets_[f]).norm() / move);
-  // Not finite only for non-finite targets, which the solve will reject on its own.
-  // At most kMaxPathSteps: a move of 100 bounding-box diagonals already takes 1,000, and a
-  // huge one (1e6 diagonals) would otherwise take a million sub-steps, each a factorization.
-  return std::isfinite(steps) ? int(std::min(std::ceil(steps - 1e-9), double(kMaxPathSteps))) : 1;
+  return options.enabled ? path_steps(target_move(options)) : 1;
 }
 
 bool Deformer::path_pending(const PathOptions& options) const {
