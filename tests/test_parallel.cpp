@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <functional>
 
 #include "primo/deformer.h"
 #include "primo/local_solver.h"
@@ -23,6 +24,18 @@ struct ThreadCount {
 
 bool same_bits(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
   return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(Vec3)) == 0;
+}
+
+// run(threads) on 1, 2, 3 and 8 threads gives the same vertices, bit for bit.
+void expect_same_on_every_thread_count(const std::function<std::vector<Vec3>(int)>& run) {
+  std::vector<std::vector<Vec3>> results;
+  for (int threads : {1, 2, 3, 8}) {
+    ThreadCount count(threads);
+    results.push_back(run(threads));
+  }
+  for (size_t k = 1; k < results.size(); ++k)
+    EXPECT_TRUE(same_bits(results[k], results[0]))
+        << "thread count #" << k << ": " << primo::test::max_distance(results[k], results[0]);
 }
 
 }  // namespace
@@ -90,9 +103,7 @@ TEST(Parallel, DragFramesGiveIdenticalVerticesOnOneTwoThreeAndEightThreads) {
   for (int k = 1; k <= 4; ++k)
     frames.push_back(test::bent_cylinder(96, 200, 10.0 * k).handles[1].transform);
   const test::BentCylinder c = test::bent_cylinder(96, 200, 0.0);
-  std::vector<std::vector<Vec3>> results;
-  for (int threads : {1, 2, 3, 8}) {
-    ThreadCount count(threads);
+  expect_same_on_every_thread_count([&](int threads) {
     Deformer d(c.mesh, PrismParameters{}, c.handles);
     SolveOptions o;
     o.method = SolveMethod::Hierarchical;
@@ -105,9 +116,25 @@ TEST(Parallel, DragFramesGiveIdenticalVerticesOnOneTwoThreeAndEightThreads) {
       predicted += d.solve(o).initial_energy < unpredicted;
     }
     EXPECT_EQ(predicted, 3) << threads << " threads";  // every frame but the first
-    results.push_back(d.vertex_positions());
-  }
-  for (size_t k = 1; k < results.size(); ++k)
-    EXPECT_TRUE(same_bits(results[k], results[0]))
-        << "thread count #" << k << ": " << primo::test::max_distance(results[k], results[0]);
+    return d.vertex_positions();
+  });
+}
+
+TEST(Parallel, NewtonKrylovStepsGiveIdenticalVerticesOnOneTwoThreeAndEightThreads) {
+  // A settling solve: cycles, then Newton-Krylov steps (Hessian blocks by body and pair,
+  // multigrid sweeps by parts and colours, dot products in chunks).
+  const test::BentCylinder c = test::bent_cylinder(96, 200, 60.0);
+  expect_same_on_every_thread_count([&](int threads) {
+    Deformer d(c.mesh, PrismParameters{}, c.handles);
+    SolveOptions o;
+    o.method = SolveMethod::Hierarchical;
+    o.tolerance = 1e-3;
+    o.hierarchical.newton_krylov_below = 1e-3;
+    d.solve(o);  // cycles, near enough for Newton
+    o.tolerance = 0.0;
+    o.max_iterations = 4;
+    d.solve(o);
+    EXPECT_GE(d.hierarchical_solver()->timings().newton_krylov_steps, 1) << threads << " threads";
+    return d.vertex_positions();
+  });
 }

@@ -23,6 +23,7 @@
 #include "primo/cluster_hierarchy.h"
 #include "primo/global_solver.h"
 #include "primo/local_solver.h"
+#include "primo/newton_krylov.h"
 #include "primo/rigid_system.h"
 
 namespace primo {
@@ -63,9 +64,22 @@ struct HierarchicalOptions {
   // 7 doubles for the last cycle.
   int acceleration_history = 5;
   double exact_hessian_below = 1e-1;  // as SolveOptions::exact_hessian_below, for the coarsest level
+  // Once the targets have stayed put for a few cycles and a cycle lowers the energy by less
+  // than this fraction, iterations are Newton-Krylov steps on the fine level instead of
+  // cycles (newton_krylov.h): the cycles' tail converges linearly, Newton quadratically where
+  // the Hessian is well conditioned. A step that fails to lower the energy hands back to
+  // cycles until the targets move. 0 (the default): cycles only. Measured with 1e-3
+  // (docs/performance.md, "Newton-Krylov steps"): at 240k faces a drag settled in 1.6 s
+  // instead of 2.3 s, but the 100k koala settled in 3.9 s instead of 1.9 s (its Newton steps
+  // converge linearly) and the 29k armadillo in 0.36 s instead of 0.29 s, and full solves
+  // gained little; so it stays an option.
+  double newton_krylov_below = 0.0;
+  NewtonKrylovOptions newton_krylov;
 };
 
 struct HierarchicalTimings {
+  double newton_krylov = 0.0;  // Newton-Krylov steps (all their phases)
+  int newton_krylov_steps = 0;
   double restrict_prolong = 0.0;
   double acceleration = 0.0;  // Anderson proposals and their energy
   double coarse = 0.0;
@@ -99,6 +113,9 @@ class HierarchicalSolver {
   void restart_acceleration() {
     acceleration_.reset();
     cycles_since_restart_ = 0;
+    krylov_failed_ = false;
+    last_decrease_ = 1.0;
+    last_was_newton_ = false;
   }
 
   int levels() const { return int(levels_.size()) + 1; }  // including the fine level
@@ -108,6 +125,10 @@ class HierarchicalSolver {
   int bodies(int level) const;  // level 0 = fine
   const HierarchicalTimings& timings() const { return timings_; }
   const GlobalSolver* coarse_solver() const { return coarse_solver_.get(); }
+  const NewtonKrylov* newton_krylov() const { return newton_krylov_.get(); }
+  // Frees the Newton-Krylov steps' matrices and vectors (about 300 MB at 240k faces) once a
+  // solve has converged; the next solve that settles makes them again (about 0.25 s there).
+  void release_newton_krylov() { newton_krylov_.reset(); }
 
  private:
   struct Level;
@@ -117,6 +138,7 @@ class HierarchicalSolver {
                       const std::vector<BodyState>& finer_state,
                       const std::vector<Mat3>* finer_orientation);
   double plain_cycle(std::vector<BodyState>& fine_state, bool with_energy = true);
+  double cycle_only(std::vector<BodyState>& fine_state, double energy_before);  // no Newton step
   // Improves level l's corrections (restricted already) with the levels above it and sweeps.
   void solve_level(int l);
   // Applies the level's corrections to the bodies of the next finer level.
@@ -132,6 +154,10 @@ class HierarchicalSolver {
   AndersonAcceleration acceleration_;
   std::vector<BodyState> cycle_input_;
   int cycles_since_restart_ = 0;
+  std::unique_ptr<NewtonKrylov> newton_krylov_;  // made on first use
+  bool krylov_failed_ = false;    // a step did not lower the energy since the targets moved
+  double last_decrease_ = 1.0;    // relative energy decrease of the last iteration
+  bool last_was_newton_ = false;  // the last iteration was a Newton-Krylov step
   HierarchicalTimings timings_;
 };
 

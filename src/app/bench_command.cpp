@@ -124,6 +124,16 @@ Command register_bench(CLI::App& app) {
                    "Anderson acceleration over this many cycles within one solve (0: off)")
       ->check(finite_range(0, 50))
       ->group(group);
+  drag->add_option("--newton-krylov-below", h.newton_krylov_below,
+                   "Newton-Krylov steps replace cycles once the targets stay put and a cycle "
+                   "lowers the energy by less than this fraction (0: cycles only)")
+      ->check(finite_range(0.0, 1.0))
+      ->group(group);
+  drag->add_option("--krylov-forcing", h.newton_krylov.forcing,
+                   "Conjugate gradients of a Newton-Krylov step stop when the preconditioned "
+                   "residual fell by this factor")
+      ->check(finite_range(1e-12, 0.99))
+      ->group(group);
   drag->add_option("--coarse-factor-reuse", h.coarse_factor_reuse,
                    "Coarse Newton steps per numeric factorization, beyond the first")
       ->check(finite_range(0, 100000))

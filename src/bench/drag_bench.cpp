@@ -362,18 +362,20 @@ int run_drag_bench(const DragBenchOptions& args) {
   // compared with (docs/performance.md); a drag's frames are small steps either way.
   base.path.enabled = false;
   const HierarchicalOptions defaults;
-  const bool tuned = args.hierarchical.hierarchy.coarsest_max_bodies !=
-                         defaults.hierarchy.coarsest_max_bodies ||
-                     args.hierarchical.hierarchy.cluster_size != defaults.hierarchy.cluster_size ||
-                     args.hierarchical.sweeps_per_level != defaults.sweeps_per_level ||
-                     args.hierarchical.intermediate_sweeps != defaults.intermediate_sweeps ||
-                     args.hierarchical.coarse_iterations != defaults.coarse_iterations ||
-                     args.hierarchical.intermediate_cycles != defaults.intermediate_cycles ||
-                     args.hierarchical.coarse_factor_reuse != defaults.coarse_factor_reuse ||
-                     args.hierarchical.drag_factor_reuse != defaults.drag_factor_reuse ||
-                     args.hierarchical.drag_factor_lag != defaults.drag_factor_lag ||
-                     args.hierarchical.intermediate_relaxation != defaults.intermediate_relaxation ||
-                     args.hierarchical.acceleration_history != defaults.acceleration_history;
+  const bool tuned =
+      args.hierarchical.hierarchy.coarsest_max_bodies != defaults.hierarchy.coarsest_max_bodies ||
+      args.hierarchical.hierarchy.cluster_size != defaults.hierarchy.cluster_size ||
+      args.hierarchical.sweeps_per_level != defaults.sweeps_per_level ||
+      args.hierarchical.intermediate_sweeps != defaults.intermediate_sweeps ||
+      args.hierarchical.coarse_iterations != defaults.coarse_iterations ||
+      args.hierarchical.intermediate_cycles != defaults.intermediate_cycles ||
+      args.hierarchical.coarse_factor_reuse != defaults.coarse_factor_reuse ||
+      args.hierarchical.drag_factor_reuse != defaults.drag_factor_reuse ||
+      args.hierarchical.drag_factor_lag != defaults.drag_factor_lag ||
+      args.hierarchical.intermediate_relaxation != defaults.intermediate_relaxation ||
+      args.hierarchical.acceleration_history != defaults.acceleration_history ||
+      args.hierarchical.newton_krylov_below != defaults.newton_krylov_below ||
+      args.hierarchical.newton_krylov.forcing != defaults.newton_krylov.forcing;
   const nlohmann::json settings = {
       {"cluster_size", args.hierarchical.hierarchy.cluster_size},
       {"coarsest_max_bodies", args.hierarchical.hierarchy.coarsest_max_bodies},
@@ -386,6 +388,8 @@ int run_drag_bench(const DragBenchOptions& args) {
       {"drag_factor_lag", args.hierarchical.drag_factor_lag},
       {"intermediate_relaxation", args.hierarchical.intermediate_relaxation},
       {"acceleration_history", args.hierarchical.acceleration_history},
+      {"newton_krylov_below", args.hierarchical.newton_krylov_below},
+      {"krylov_forcing", args.hierarchical.newton_krylov.forcing},
       {"core_defaults", !tuned}};
   if (method == SolveMethod::Hierarchical) {
     out["hierarchical_settings"] = settings;
@@ -508,9 +512,9 @@ int run_drag_bench(const DragBenchOptions& args) {
 
   const int later = int(drag.frame_seconds.size()) - 1;
   std::printf("Where the time goes (ms; 'coarse' contains the coarse Newton columns after it)\n");
-  std::printf("  %-22s %9s %8s %8s %8s %8s %8s %8s %8s %8s %8s %8s %8s\n", "", "total",
-              "targets", "restr+pr", "coarse", "assembly", "factor", "solve", "line srch",
-              "sweeps", "accel", "vertices", "other");
+  std::printf("  %-22s %9s %8s %8s %8s %8s %8s %8s %8s %8s %8s %8s %8s %8s\n", "", "total",
+              "targets", "restr+pr", "coarse", "assembly", "factor", "solve", "line srch", "sweeps",
+              "accel", "N-Krylov", "vertices", "other");
   print_breakdown_row("first frame", drag.first_frame, method);
   if (later > 0) print_breakdown_row("per frame, 2..N", drag.later_frames.per(later), method);
   if (!args.drag_only) print_breakdown_row("converge (total)", drag.converge_profile, method);

@@ -14,6 +14,8 @@ SolverClock SolverClock::read(const Deformer& deformer) {
     c.coarse = h->timings().coarse;
     c.sweeps = h->timings().sweeps;
     c.acceleration = h->timings().acceleration;
+    c.newton_krylov = h->timings().newton_krylov;
+    c.newton_krylov_steps = h->timings().newton_krylov_steps;
     c.cycles = h->timings().cycles;
     if (const GlobalSolver* g = h->coarse_solver()) c.newton = g->timings();
   } else if (const GlobalSolver* g = deformer.global_solver()) {
@@ -24,7 +26,8 @@ SolverClock SolverClock::read(const Deformer& deformer) {
 
 double Breakdown::other() const {
   // The coarse phase contains the coarse Newton parts; the global method has no coarse phase.
-  const double solver = restrict_prolong + sweeps + acceleration + std::max(coarse, newton());
+  const double solver =
+      restrict_prolong + sweeps + acceleration + newton_krylov + std::max(coarse, newton());
   return total - set_targets - vertex_update - solver;
 }
 
@@ -33,6 +36,8 @@ void Breakdown::add_solver(const SolverClock& before, const SolverClock& after) 
   coarse += after.coarse - before.coarse;
   sweeps += after.sweeps - before.sweeps;
   acceleration += after.acceleration - before.acceleration;
+  newton_krylov += after.newton_krylov - before.newton_krylov;
+  newton_krylov_steps += after.newton_krylov_steps - before.newton_krylov_steps;
   assembly += after.newton.assembly - before.newton.assembly;
   factorization += after.newton.factorization - before.newton.factorization;
   solve += after.newton.solve - before.newton.solve;
@@ -45,7 +50,7 @@ Breakdown Breakdown::per(int n) const {
   const double k = n > 0 ? 1.0 / n : 0.0;
   for (double* x : {&b.total, &b.set_targets, &b.restrict_prolong, &b.coarse, &b.assembly,
                     &b.factorization, &b.solve, &b.line_search, &b.sweeps, &b.acceleration,
-                    &b.vertex_update, &b.factorizations})
+                    &b.newton_krylov, &b.newton_krylov_steps, &b.vertex_update, &b.factorizations})
     *x *= k;
   return b;
 }
@@ -61,6 +66,8 @@ nlohmann::json Breakdown::to_json_ms() const {
           {"line_search", 1e3 * line_search},
           {"sweeps", 1e3 * sweeps},
           {"acceleration", 1e3 * acceleration},
+          {"newton_krylov", 1e3 * newton_krylov},
+          {"newton_krylov_steps", newton_krylov_steps},
           {"vertex_update", 1e3 * vertex_update},
           {"other", 1e3 * other()},
           {"factorizations", factorizations}};
@@ -73,9 +80,9 @@ void print_breakdown_row(const char* label, const Breakdown& b, SolveMethod meth
     std::printf(" %8.2f", 1e3 * b.coarse);
   else
     std::printf(" %8s", "-");
-  std::printf(" %8.2f %8.2f %8.2f %8.2f %8.2f %8.2f %8.2f %8.2f\n", 1e3 * b.assembly,
+  std::printf(" %8.2f %8.2f %8.2f %8.2f %8.2f %8.2f %8.2f %8.2f %8.2f\n", 1e3 * b.assembly,
               1e3 * b.factorization, 1e3 * b.solve, 1e3 * b.line_search, 1e3 * b.sweeps,
-              1e3 * b.acceleration, 1e3 * b.vertex_update, 1e3 * b.other());
+              1e3 * b.acceleration, 1e3 * b.newton_krylov, 1e3 * b.vertex_update, 1e3 * b.other());
 }
 
 }  // namespace primo::bench

@@ -15,6 +15,8 @@ struct SolverClock {
   double coarse = 0.0;
   double sweeps = 0.0;
   double acceleration = 0.0;
+  double newton_krylov = 0.0;
+  int newton_krylov_steps = 0;
   int cycles = 0;
   GlobalSolverTimings newton;  // the coarse level's solver (hierarchical) or the global solver
 
@@ -35,6 +37,8 @@ struct Breakdown {
   double line_search = 0.0;
   double sweeps = 0.0;
   double acceleration = 0.0;  // Anderson proposals and their energy
+  double newton_krylov = 0.0;        // Newton-Krylov steps, all their phases
+  double newton_krylov_steps = 0.0;  // count
   double vertex_update = 0.0;
   double factorizations = 0.0;  // count (per frame after per())
 

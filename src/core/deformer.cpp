@@ -375,6 +375,7 @@ SolveReport Deformer::solve_now(const SolveOptions& options) {
   }
   report.energy = e;
   known_energy_ = e;
+  if (report.converged && hierarchical_) hierarchical_->release_newton_krylov();
   settled_ = report.converged;
   settled_method_ = options.method;
   settled_tolerance_ = options.tolerance;

@@ -1,10 +1,11 @@
 #include "primo/global_solver.h"
 
+#include <dlfcn.h>
+
 #include <Eigen/CholmodSupport>
 #include <Eigen/Geometry>
 #include <Eigen/SparseCore>
 #include <algorithm>
-#include <tuple>
 #include <array>
 #include <chrono>
 #include <cmath>
@@ -12,46 +13,21 @@
 #include <mutex>
 #include <system_error>
 #include <thread>
+#include <tuple>
 #include <unordered_map>
-
-#include <dlfcn.h>
 
 #include "primo/horn.h"
 #include "primo/parallel.h"
+#include "rigid_blocks.h"
 
 namespace primo {
 namespace {
 
-using Mat6 = Eigen::Matrix<double, 6, 6>;
-using Vec6 = Eigen::Matrix<double, 6, 1>;
 using SparseMatrix = Eigen::SparseMatrix<double>;
 using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-// Local dof order of a body: v (0..2), omega (3..5).
-int active_mask(BodyKind kind) {
-  switch (kind) {
-    case BodyKind::Free: return 0x3F;
-    case BodyKind::PinnedPosition: return 0x38;
-    case BodyKind::FixedRotation: return 0x07;
-    case BodyKind::Fixed: return 0;
-  }
-  return 0;
-}
-
-Mat3 cross_matrix(const Vec3& a) {
-  Mat3 m;
-  m << 0, -a.z(), a.y(), a.z(), 0, -a.x(), -a.y(), a.x(), 0;
-  return m;
-}
-
-// w (|y|^2 I - y y^T) = w [y]x^T [y]x
-void add_rotational_inertia(Eigen::Ref<Mat3> m, const Vec3& y, double w) {
-  m.noalias() -= w * y * y.transpose();
-  m.diagonal().array() += w * y.squaredNorm();
 }
 
 // OpenBLAS limited to the calling thread for a scope, when `active` (and the BLAS in use is
@@ -101,59 +77,6 @@ class ScopedSingleThreadBlas {
     return n;
   }
   bool active_;
-};
-
-// Calls residual(y0, y1, r, w, point) for the four modes of a coupling in the given states
-// (y_s the side's mode turned into world orientation, r = X_0 - X_1): the mean as a point,
-// the derivatives as vectors.
-template <class Residual>
-void for_each_residual(const RigidSystem::Coupling& c, const BodyState& s0, const BodyState& s1,
-                       Residual&& residual) {
-  const Vec3 p0 = s0.rotation * c.local[0].mean, p1 = s1.rotation * c.local[1].mean;
-  residual(p0, p1, (p0 + s0.position) - (p1 + s1.position), c.weight, true);
-  const Vec3 u0 = s0.rotation * c.local[0].du, u1 = s1.rotation * c.local[1].du;
-  residual(u0, u1, u0 - u1, c.weight * kModeWeightDu, false);
-  const Vec3 v0 = s0.rotation * c.local[0].dv, v1 = s1.rotation * c.local[1].dv;
-  residual(v0, v1, v0 - v1, c.weight * kModeWeightDv, false);
-  const Vec3 t0 = s0.rotation * c.local[0].duv, t1 = s1.rotation * c.local[1].duv;
-  residual(t0, t1, t0 - t1, c.weight * kModeWeightDuv, false);
-}
-
-// Gauss-Newton blocks of one residual r = X_0 - X_1 with X_s = position_s + y_s (a point) or
-// X_s = y_s (a vector, no translation), linearized as dX = v + omega x y.
-struct FeatureBlocks {
-  Mat6 h00 = Mat6::Zero(), h11 = Mat6::Zero(), h01 = Mat6::Zero();
-  Vec6 g0 = Vec6::Zero(), g1 = Vec6::Zero();
-  Mat3 s0 = Mat3::Zero(), s1 = Mat3::Zero();  // second-order rotation terms
-
-  void add(const Vec3& y0, const Vec3& y1, const Vec3& r, double w, bool point) {
-    if (point) {
-      h00.block<3, 3>(0, 0).diagonal().array() += w;
-      h11.block<3, 3>(0, 0).diagonal().array() += w;
-      h01.block<3, 3>(0, 0).diagonal().array() -= w;
-      const Mat3 c0 = w * cross_matrix(y0), c1 = w * cross_matrix(y1);
-      h00.block<3, 3>(0, 3) -= c0;
-      h00.block<3, 3>(3, 0) += c0;
-      h11.block<3, 3>(0, 3) -= c1;
-      h11.block<3, 3>(3, 0) += c1;
-      h01.block<3, 3>(0, 3) += c1;
-      h01.block<3, 3>(3, 0) -= c0;
-      g0.head<3>() += w * r;
-      g1.head<3>() -= w * r;
-    }
-    add_rotational_inertia(h00.block<3, 3>(3, 3), y0, w);
-    add_rotational_inertia(h11.block<3, 3>(3, 3), y1, w);
-    h01.block<3, 3>(3, 3).noalias() += w * y1 * y0.transpose();
-    h01.block<3, 3>(3, 3).diagonal().array() -= w * y0.dot(y1);
-    g0.tail<3>() += w * y0.cross(r);
-    g1.tail<3>() -= w * y1.cross(r);
-    // d^2/domega^2 of r . (1/2) omega x (omega x y) = (r y^T + y r^T) / 2 - (r . y) I
-    const Mat3 ry0 = r * y0.transpose(), ry1 = r * y1.transpose();
-    s0 += w * 0.5 * (ry0 + ry0.transpose());
-    s0.diagonal().array() -= w * r.dot(y0);
-    s1 -= w * 0.5 * (ry1 + ry1.transpose());
-    s1.diagonal().array() += w * r.dot(y1);
-  }
 };
 
 }  // namespace
@@ -688,21 +611,16 @@ GlobalStep GlobalSolver::iterate(std::vector<BodyState>& state, bool exact_hessi
       Clock::time_point start;
       ~AddTime() { total += seconds_since(start); }
     } add_time{m.timings.line_search, search_start};
-    double lambda = 1.0;
-    for (int halving = 0; halving <= max_halvings; ++halving, lambda *= 0.5) {
-      std::vector<BodyState> trial = m.apply(state, delta, lambda, exact);
-      const double e = m.sys.energy(trial);
-      ++m.timings.energy_evaluations;
-      if (e < step.energy_before) {
-        state.swap(trial);
-        step.energy_after = e;
-        step.step_scale = lambda;
-        step.exact_hessian = exact;
-        step.decreased = true;
-        return true;
-      }
-    }
-    return false;
+    const HalvedStep found = halve_until_lower(
+        m.sys, state, step.energy_before, max_halvings,
+        [&](double lambda) { return m.apply(state, delta, lambda, exact); });
+    m.timings.energy_evaluations += found.evaluations;
+    if (found.lambda == 0.0) return false;
+    step.energy_after = found.energy;
+    step.step_scale = found.lambda;
+    step.exact_hessian = exact;
+    step.decreased = true;
+    return true;
   };
 
   // A factor from an earlier iteration still gives a descent direction (the matrix it came

@@ -13,6 +13,7 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 constexpr int kMovingCycles = 2;  // cycles since the targets changed that count as a drag
+constexpr double kConfirmBelow = 1e-5;
 // Automatic drag_factor_lag: the factorization's flops over this many per fine body, within
 // [2, 16] steps. Measured on two cores with the factorization sharing them with the cycles:
 // 8 steps hide a 3e8-flop factorization behind a 29k-face drag (one coarse step per frame),
@@ -299,6 +300,36 @@ void HierarchicalSolver::prepare(const std::vector<BodyState>& fine_state) {
 }
 
 double HierarchicalSolver::cycle(std::vector<BodyState>& fine_state, double energy_before) {
+  const bool settling = cycles_since_restart_ > kMovingCycles;
+  // A Newton step that lowered the energy by less than kConfirmBelow of it left the state
+  // within about the square of that of the minimum (Newton converges quadratically): all the
+  // next iteration has to do is confirm it, and a cycle does so at a tenth of a step's cost.
+  const bool confirming = last_was_newton_ && last_decrease_ < kConfirmBelow;
+  last_was_newton_ = false;
+  if (settling && !krylov_failed_ && !confirming && last_decrease_ < options_.newton_krylov_below) {
+    const auto t = Clock::now();
+    if (!newton_krylov_)
+      newton_krylov_ = std::make_unique<NewtonKrylov>(fine_, options_.newton_krylov);
+    const NewtonKrylovStep step = newton_krylov_->iterate(fine_state, energy_before);
+    timings_.newton_krylov += seconds_since(t);
+    ++timings_.newton_krylov_steps;
+    ++cycles_since_restart_;
+    if (step.decreased) {
+      acceleration_.reset();  // the cycles' history is no longer that of this state
+      last_decrease_ = (step.energy_before - step.energy_after) / step.energy_before;
+      last_was_newton_ = true;
+      return step.energy_after;
+    }
+    krylov_failed_ = true;
+    energy_before = step.energy_before;
+  }
+  const double result = cycle_only(fine_state, energy_before);
+  if (std::isfinite(energy_before) && energy_before > 0.0)
+    last_decrease_ = (energy_before - result) / energy_before;
+  return result;
+}
+
+double HierarchicalSolver::cycle_only(std::vector<BodyState>& fine_state, double energy_before) {
   // The first cycle after a restart is not recorded: a drag updates the targets before every
   // cycle, and would pay for bookkeeping it can never use.
   const bool accelerate = acceleration_.history() > 0 && cycles_since_restart_ > 0;

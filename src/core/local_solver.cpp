@@ -1,13 +1,13 @@
 #include "primo/local_solver.h"
 
-#include "primo/horn.h"
-#include "primo/parallel.h"
-
 #include <Eigen/Geometry>
-
 #include <algorithm>
 #include <limits>
 #include <thread>
+
+#include "primo/body_partition.h"
+#include "primo/horn.h"
+#include "primo/parallel.h"
 
 namespace primo {
 
@@ -159,64 +159,6 @@ namespace {
 constexpr size_t kBodiesPerPart = 2000;
 constexpr int kMaxPartLevels = 7;  // at most 2^7 = 128 parts
 
-// Splits `bodies` in two at the median of their rest centres along the longest axis of their
-// bounding box, `levels` times over.
-void bisect(const RigidSystem& system, std::vector<int> bodies, int levels,
-            std::vector<std::vector<int>>& parts) {
-  if (levels == 0 || bodies.size() < 2) {
-    std::sort(bodies.begin(), bodies.end());
-    parts.push_back(std::move(bodies));
-    return;
-  }
-  Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
-  for (int b : bodies) {
-    lo = lo.cwiseMin(system.bodies[b].rest_center);
-    hi = hi.cwiseMax(system.bodies[b].rest_center);
-  }
-  int axis = 0;
-  (hi - lo).maxCoeff(&axis);
-  const size_t middle = bodies.size() / 2;
-  // Ties broken by index, so the split never depends on the sort's whims.
-  std::nth_element(bodies.begin(), bodies.begin() + middle, bodies.end(), [&](int a, int b) {
-    const double ca = system.bodies[a].rest_center[axis], cb = system.bodies[b].rest_center[axis];
-    return ca < cb || (ca == cb && a < b);
-  });
-  std::vector<int> upper(bodies.begin() + middle, bodies.end());
-  bodies.resize(middle);
-  bisect(system, std::move(bodies), levels - 1, parts);
-  bisect(system, std::move(upper), levels - 1, parts);
-}
-
-// Greedy colouring of the parts' adjacency (two parts touch when a coupling joins them), in
-// part order: the smallest colour no earlier neighbour has.
-std::vector<std::vector<int>> colour_parts(const RigidSystem& system,
-                                           const std::vector<std::vector<int>>& parts) {
-  std::vector<int> part_of(size_t(system.n_bodies()), -1);
-  for (size_t p = 0; p < parts.size(); ++p)
-    for (int b : parts[p]) part_of[size_t(b)] = int(p);
-  std::vector<std::vector<int>> touching(parts.size());
-  for (const RigidSystem::Coupling& c : system.couplings) {
-    const int p0 = part_of[size_t(c.body[0])], p1 = part_of[size_t(c.body[1])];
-    if (p0 >= 0 && p1 >= 0 && p0 != p1) {
-      touching[size_t(p0)].push_back(p1);
-      touching[size_t(p1)].push_back(p0);
-    }
-  }
-  std::vector<int> colour(parts.size(), -1);
-  std::vector<std::vector<int>> colours;
-  for (size_t p = 0; p < parts.size(); ++p) {
-    std::vector<char> used(colours.size() + 1, 0);
-    for (int q : touching[p])
-      if (colour[size_t(q)] >= 0) used[size_t(colour[size_t(q)])] = 1;
-    int c = 0;
-    while (used[size_t(c)]) ++c;
-    colour[p] = c;
-    if (c == int(colours.size())) colours.emplace_back();
-    colours[size_t(c)].push_back(int(p));
-  }
-  return colours;
-}
-
 }  // namespace
 
 SweepPlan plan_sweep(const RigidSystem& system, bool parallel) {
@@ -226,11 +168,15 @@ SweepPlan plan_sweep(const RigidSystem& system, bool parallel) {
   for (int b = 0; b < n; ++b)
     if (system.bodies[b].kind != BodyKind::Fixed) movable.push_back(b);
   refresh_sweep_plan(plan, system);
-  int levels = 0;
-  while (parallel && levels < kMaxPartLevels && (movable.size() >> (levels + 1)) >= kBodiesPerPart)
-    ++levels;
-  bisect(system, std::move(movable), levels, plan.parts);
-  plan.colours = colour_parts(system, plan.parts);
+  std::vector<Vec3> position(static_cast<size_t>(n));
+  for (int b = 0; b < n; ++b) position[size_t(b)] = system.bodies[size_t(b)].rest_center;
+  std::vector<std::pair<int, int>> edges;
+  edges.reserve(system.couplings.size());
+  for (const RigidSystem::Coupling& c : system.couplings) edges.emplace_back(c.body[0], c.body[1]);
+  BodyPartition partition = partition_bodies(std::move(movable), position, edges, kBodiesPerPart,
+                                             parallel ? kMaxPartLevels : 0);
+  plan.parts = std::move(partition.parts);
+  plan.colours = std::move(partition.colours);
   return plan;
 }
 

@@ -1,0 +1,29 @@
+#pragma once
+// Parts and colours for Gauss-Seidel sweeps on every core with the same result on any number
+// of threads: bodies are cut into parts by recursive bisection of their positions along the
+// longest axis (how many parts depends on the number of bodies alone), and parts are coloured
+// so that no two parts of a colour contain coupled bodies. A sweep then matches the parts of
+// one colour in parallel, colour after colour, each part in index order: a Gauss-Seidel
+// ordering that does not depend on the threads. Local matching (local_solver.h) and the
+// smoother of the Newton-Krylov preconditioner (rigid_multigrid.h) sweep this way.
+
+#include <utility>
+#include <vector>
+
+#include "primo/types.h"
+
+namespace primo {
+
+struct BodyPartition {
+  std::vector<std::vector<int>> parts;    // each part's bodies, in index order
+  std::vector<std::vector<int>> colours;  // each colour's parts, in index order
+};
+
+// `bodies` (those that move) split about `bodies_per_part` a part, at most 2^max_levels parts;
+// `edges` are the coupled pairs of bodies (any order, repeats allowed), `position` is indexed
+// by body.
+BodyPartition partition_bodies(std::vector<int> bodies, const std::vector<Vec3>& position,
+                               const std::vector<std::pair<int, int>>& edges,
+                               size_t bodies_per_part, int max_levels);
+
+}  // namespace primo

@@ -1,0 +1,70 @@
+#pragma once
+// Newton steps on all bodies at once, each solved inexactly by conjugate gradients
+// preconditioned by the rigid-cluster multigrid cycle (rigid_multigrid.h): the fast tail of a
+// solve. Near a minimum the hierarchical cycles remove a fixed fraction of the error per
+// cycle (a few percent at 240k faces), where Newton steps converge quadratically; a direct
+// factorization of the fine Newton system, which global matching uses, costs seconds and
+// gigabytes at that size, and conjugate gradients need only products with the Hessian's
+// blocks and a cheap cycle.
+//
+// A step: the exact Hessian (the Gauss-Newton blocks plus the second-order rotation terms,
+// as global_solver.h) and gradient in the motions (v, omega) of every body; conjugate
+// gradients until the preconditioned residual fell by `forcing`; the update through the
+// exponential map, halved until the energy drops. Where the Hessian or its diagonal blocks
+// are not positive definite (away from a minimum) the Gauss-Newton matrix is used instead.
+// The same bits on any number of threads.
+
+#include <memory>
+#include <vector>
+
+#include "primo/rigid_multigrid.h"
+#include "primo/rigid_system.h"
+
+namespace primo {
+
+struct NewtonKrylovOptions {
+  MultigridOptions multigrid;
+  // Conjugate gradients stop when the preconditioned residual norm fell by this factor
+  // (the Newton step's inexactness), or after `max_cg_iterations`. At 240k faces 0.15 settled
+  // a drag in two steps of 5 and 4 iterations, where 0.05 took 7 and 5 (docs/performance.md).
+  double forcing = 0.15;
+  int max_cg_iterations = 40;
+  int max_halvings = 12;
+};
+
+struct NewtonKrylovStep {
+  double energy_before = 0.0;
+  double energy_after = 0.0;
+  double step_scale = 0.0;  // accepted fraction of the step (0: none lowered the energy)
+  int cg_iterations = 0;
+  bool exact_hessian = false;
+  bool decreased = false;
+};
+
+struct NewtonKrylovTimings {
+  double assembly = 0.0;  // Hessian blocks and gradient
+  double setup = 0.0;     // multigrid projections, smoother blocks, coarsest factor
+  double krylov = 0.0;    // conjugate gradients
+  double line_search = 0.0;
+  int steps = 0;
+  int cg_iterations = 0;
+};
+
+class NewtonKrylov {
+ public:
+  NewtonKrylov(const RigidSystem& system, const NewtonKrylovOptions& options = {});
+  ~NewtonKrylov();
+  NewtonKrylov(const NewtonKrylov&) = delete;
+  NewtonKrylov& operator=(const NewtonKrylov&) = delete;
+
+  // One step from `state` (updated in place when the energy decreased); `energy_before` is the
+  // energy of `state` (computed when NaN).
+  NewtonKrylovStep iterate(std::vector<BodyState>& state, double energy_before);
+  const NewtonKrylovTimings& timings() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace primo

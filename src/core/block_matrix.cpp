@@ -1,0 +1,41 @@
+#include "primo/block_matrix.h"
+
+#include "primo/parallel.h"
+
+namespace primo {
+
+void BlockMatrix::set_structure(int n, std::vector<std::pair<int, int>> coupled_pairs) {
+  pairs = std::move(coupled_pairs);
+  diag.assign(size_t(n), Mat6f::Zero());
+  off.assign(pairs.size(), Mat6f::Zero());
+  row_begin.assign(size_t(n) + 1, 0);
+  for (const auto& [a, b] : pairs) {
+    ++row_begin[size_t(a) + 1];
+    ++row_begin[size_t(b) + 1];
+  }
+  for (int b = 0; b < n; ++b) row_begin[size_t(b) + 1] += row_begin[size_t(b)];
+  row_pairs.resize(size_t(row_begin[size_t(n)]));
+  std::vector<int> next(row_begin.begin(), row_begin.end() - 1);
+  for (size_t p = 0; p < pairs.size(); ++p) {
+    row_pairs[size_t(next[size_t(pairs[p].first)]++)] = int(p);
+    row_pairs[size_t(next[size_t(pairs[p].second)]++)] = int(p);
+  }
+}
+
+void BlockMatrix::multiply(const BlockVector& x, BlockVector& y) const {
+  y.resize(diag.size());
+  parallel_chunks(diag.size(), kParallelGrain / 4, [&](size_t begin, size_t end) {
+    for (size_t b = begin; b < end; ++b)
+      y[b] = diag[b].cast<double>() * x[b] + off_product(int(b), x);
+  });
+}
+
+double dot(const BlockVector& a, const BlockVector& b) {
+  return parallel_sum(a.size(), kParallelGrain, 0.0, [&](size_t begin, size_t end) {
+    double sum = 0.0;
+    for (size_t i = begin; i < end; ++i) sum += a[i].dot(b[i]);
+    return sum;
+  });
+}
+
+}  // namespace primo

@@ -1,0 +1,121 @@
+#include "primo/newton_krylov.h"
+
+#include <chrono>
+#include <cmath>
+
+#include "primo/parallel.h"
+#include "primo/rigid_hessian.h"
+#include "rigid_blocks.h"
+
+namespace primo {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
+
+}  // namespace
+
+struct NewtonKrylov::Impl {
+  const RigidSystem& sys;
+  NewtonKrylovOptions options;
+  RigidHessian hessian;
+  RigidMultigrid multigrid;
+  BlockVector x, r, z, p, q;
+  std::vector<Vec3> position;
+  NewtonKrylovTimings timings;
+
+  Impl(const RigidSystem& s, const NewtonKrylovOptions& o)
+      : sys(s), options(o), hessian(s), multigrid(s, hessian.matrix().pairs, o.multigrid) {}
+
+  // Conjugate gradients on H x = -gradient from zero. Returns the iterations, or -1 when the
+  // first direction already has non-positive curvature (H is not positive definite there).
+  int conjugate_gradients() {
+    const BlockMatrix& h = hessian.matrix();
+    const BlockVector& gradient = hessian.gradient();
+    const size_t n = gradient.size();
+    x.assign(n, Vec6::Zero());
+    r.resize(n);
+    for (size_t b = 0; b < n; ++b) r[b] = -gradient[b];
+    multigrid.apply(r, z);
+    p = z;
+    double rz = dot(r, z);
+    if (!(rz > 0.0)) return 0;
+    const double stop = options.forcing * options.forcing * rz;
+    int it = 0;
+    while (it < options.max_cg_iterations) {
+      h.multiply(p, q);
+      const double curvature = dot(p, q);
+      if (!(curvature > 0.0)) return it == 0 ? -1 : it;  // keep what was found before it
+      const double alpha = rz / curvature;
+      parallel_chunks(n, kParallelGrain, [&](size_t begin, size_t end) {
+        for (size_t b = begin; b < end; ++b) {
+          x[b] += alpha * p[b];
+          r[b] -= alpha * q[b];
+        }
+      });
+      ++it;
+      multigrid.apply(r, z);
+      const double rz_next = dot(r, z);
+      if (rz_next <= stop) break;
+      // Flexible (Polak-Ribiere) beta = z' . (r' - r) / (z . r), with r' - r = -alpha q: the
+      // K-cycle is not quite a fixed linear map, and Fletcher-Reeves' rz'/rz assumes one.
+      const double beta = -alpha * dot(z, q) / rz;
+      rz = rz_next;
+      parallel_chunks(n, kParallelGrain, [&](size_t begin, size_t end) {
+        for (size_t b = begin; b < end; ++b) p[b] = z[b] + beta * p[b];
+      });
+    }
+    return it;
+  }
+};
+
+NewtonKrylov::NewtonKrylov(const RigidSystem& system, const NewtonKrylovOptions& options)
+    : impl_(std::make_unique<Impl>(system, options)) {}
+NewtonKrylov::~NewtonKrylov() = default;
+const NewtonKrylovTimings& NewtonKrylov::timings() const { return impl_->timings; }
+
+NewtonKrylovStep NewtonKrylov::iterate(std::vector<BodyState>& state, double energy_before) {
+  Impl& m = *impl_;
+  NewtonKrylovStep step;
+  step.energy_before = std::isnan(energy_before) ? m.sys.energy(state) : energy_before;
+  step.energy_after = step.energy_before;
+  ++m.timings.steps;
+  m.position.resize(state.size());
+  for (size_t b = 0; b < state.size(); ++b) m.position[b] = state[b].position;
+
+  // The exact Hessian first; Gauss-Newton's when it or a block the preconditioner inverts is
+  // not positive definite (assembled again then: keeping both would cost memory every step
+  // for a fallback that is rare near a minimum).
+  for (const bool exact : {true, false}) {
+    auto t = Clock::now();
+    m.hessian.assemble(state, exact);
+    m.timings.assembly += seconds_since(t);
+    t = Clock::now();
+    const bool ready = m.multigrid.set_matrix(m.hessian.matrix(), m.position);
+    m.timings.setup += seconds_since(t);
+    if (!ready) continue;
+    t = Clock::now();
+    const int iterations = m.conjugate_gradients();
+    m.timings.krylov += seconds_since(t);
+    if (iterations <= 0) continue;
+    m.timings.cg_iterations += iterations;
+    step.cg_iterations += iterations;
+    t = Clock::now();
+    const HalvedStep found =
+        halve_until_lower(m.sys, state, step.energy_before, m.options.max_halvings,
+                          [&](double lambda) { return m.hessian.moved(state, m.x, lambda); });
+    m.timings.line_search += seconds_since(t);
+    if (found.lambda > 0.0) {
+      step.energy_after = found.energy;
+      step.step_scale = found.lambda;
+      step.exact_hessian = exact;
+      step.decreased = true;
+    }
+    if (step.decreased) break;
+  }
+  return step;
+}
+
+}  // namespace primo

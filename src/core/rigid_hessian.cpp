@@ -1,0 +1,123 @@
+#include "primo/rigid_hessian.h"
+
+#include <algorithm>
+#include <unordered_map>
+
+#include "primo/global_solver.h"
+#include "primo/parallel.h"
+#include "rigid_blocks.h"
+
+namespace primo {
+namespace {
+
+constexpr size_t kBodyGrain = kParallelGrain / 8;  // a body's blocks cost a few thousand flops
+
+}  // namespace
+
+RigidHessian::RigidHessian(const RigidSystem& system) : system_(system) {
+  const int n = system.n_bodies();
+  mask_.resize(size_t(n));
+  for (int b = 0; b < n; ++b) mask_[size_t(b)] = active_mask(system.bodies[size_t(b)].kind);
+  // One block per pair of coupled bodies that both move, numbered in coupling order.
+  std::unordered_map<long long, int> index;
+  std::vector<std::pair<int, int>> pairs;
+  std::vector<std::vector<int>> couplings_of;
+  for (size_t c = 0; c < system.couplings.size(); ++c) {
+    const int b0 = system.couplings[c].body[0], b1 = system.couplings[c].body[1];
+    if (mask_[size_t(b0)] == 0 || mask_[size_t(b1)] == 0) continue;
+    const int hi = std::max(b0, b1), lo = std::min(b0, b1);
+    const auto [it, inserted] = index.emplace((long long)hi * n + lo, int(pairs.size()));
+    if (inserted) {
+      pairs.emplace_back(hi, lo);
+      couplings_of.emplace_back();
+    }
+    couplings_of[size_t(it->second)].push_back(int(c));
+  }
+  pair_begin_.assign(1, 0);
+  for (const std::vector<int>& list : couplings_of) {
+    pair_couplings_.insert(pair_couplings_.end(), list.begin(), list.end());
+    pair_begin_.push_back(int(pair_couplings_.size()));
+  }
+  matrix_.set_structure(n, std::move(pairs));
+  gradient_.assign(size_t(n), Vec6::Zero());
+}
+
+void RigidHessian::assemble(const std::vector<BodyState>& state, bool second_order) {
+  const RigidSystem& sys = system_;
+  parallel_chunks(size_t(sys.n_bodies()), kBodyGrain, [&](size_t begin, size_t end) {
+    for (size_t b = begin; b < end; ++b) {
+      Mat6 h = Mat6::Zero();
+      Vec6 g = Vec6::Zero();
+      Mat3 s = Mat3::Zero();
+      if (mask_[b] != 0) {
+        for (int k = sys.coupling_begin[b]; k < sys.coupling_begin[b + 1]; ++k) {
+          const auto [ci, side] = sys.body_couplings[size_t(k)];
+          const RigidSystem::Coupling& c = sys.couplings[size_t(ci)];
+          for_each_residual(c, state[size_t(c.body[0])], state[size_t(c.body[1])],
+                            [&, side = side](const Vec3& y0, const Vec3& y1, const Vec3& r,
+                                             double w, bool point) {
+                              if (side == 0)
+                                FeatureBlocks::add_own(h, g, s, y0, r, w, point);
+                              else
+                                FeatureBlocks::add_own(h, g, s, y1, -r, w, point);
+                            });
+        }
+        for (int k = sys.spring_begin[b]; k < sys.spring_begin[b + 1]; ++k) {
+          const RigidSystem::Spring& spring = sys.springs[size_t(sys.body_springs[size_t(k)])];
+          const Vec3 y = state[b].rotation * spring.local;
+          FeatureBlocks::add_own(h, g, s, y, y + state[b].position - spring.target, spring.weight,
+                                 true);
+        }
+      }
+      for (int d = 0; d < 6; ++d)
+        if (!(mask_[b] & (1 << d))) {
+          h.row(d).setZero();
+          h.col(d).setZero();
+          h(d, d) = 1.0;
+          g[d] = 0.0;
+        }
+      if (second_order && (mask_[b] & 0x38)) h.block<3, 3>(3, 3) += s;
+      matrix_.diag[b] = h.cast<BlockScalar>();
+      gradient_[b] = g;
+    }
+  });
+  parallel_chunks(matrix_.pairs.size(), kBodyGrain, [&](size_t begin, size_t end) {
+    for (size_t p = begin; p < end; ++p) {
+      Mat6 h01 = Mat6::Zero();
+      const int first = matrix_.pairs[p].first;
+      for (int k = pair_begin_[p]; k < pair_begin_[p + 1]; ++k) {
+        const RigidSystem::Coupling& c = sys.couplings[size_t(pair_couplings_[size_t(k)])];
+        Mat6 block = Mat6::Zero();
+        for_each_residual(c, state[size_t(c.body[0])], state[size_t(c.body[1])],
+                          [&](const Vec3& y0, const Vec3& y1, const Vec3&, double w, bool point) {
+                            FeatureBlocks::add_cross(block, y0, y1, w, point);
+                          });
+        if (c.body[0] == first)
+          h01 += block;
+        else
+          h01 += block.transpose();
+      }
+      const int m0 = mask_[size_t(first)], m1 = mask_[size_t(matrix_.pairs[p].second)];
+      for (int d = 0; d < 6; ++d) {
+        if (!(m0 & (1 << d))) h01.row(d).setZero();
+        if (!(m1 & (1 << d))) h01.col(d).setZero();
+      }
+      matrix_.off[p] = h01.cast<BlockScalar>();
+    }
+  });
+}
+
+std::vector<BodyState> RigidHessian::moved(const std::vector<BodyState>& state,
+                                           const BlockVector& step, double lambda) const {
+  std::vector<BodyState> next = state;
+  parallel_chunks(state.size(), kParallelGrain, [&](size_t begin, size_t end) {
+    for (size_t b = begin; b < end; ++b) {
+      const Vec6 d = lambda * step[b];
+      if (mask_[b] & 0x38) next[b].rotation = rotation_from_vector(d.tail<3>()) * state[b].rotation;
+      if (mask_[b] & 0x07) next[b].position = state[b].position + d.head<3>();
+    }
+  });
+  return next;
+}
+
+}  // namespace primo

@@ -1,0 +1,418 @@
+#include "primo/rigid_multigrid.h"
+
+#include <Eigen/Cholesky>
+#include <Eigen/CholmodSupport>
+#include <Eigen/SparseCore>
+#include <algorithm>
+#include <unordered_map>
+
+#include "primo/body_partition.h"
+#include "primo/cluster_hierarchy.h"
+#include "primo/parallel.h"
+
+namespace primo {
+namespace {
+
+using SparseMatrix = Eigen::SparseMatrix<double>;
+
+// Bodies per part of a smoothing sweep (as local matching's: a part is one task).
+constexpr size_t kBodiesPerPart = 2000;
+constexpr int kMaxPartLevels = 7;
+
+// T_i^T B T_j for the rigid transfers T = [[I, -[d]x], [0, I]] (a cluster's (v, omega) to a
+// body's, d the body's arm from the cluster's point), in 3x3 blocks.
+Mat6 transfer(const Mat6& b, const Vec3& di, const Vec3& dj) {
+  auto cross_rows = [](const Vec3& d, const Eigen::Ref<const Mat3>& m) {  // [d]x m
+    Mat3 out;
+    for (int c = 0; c < 3; ++c) out.col(c) = d.cross(Vec3(m.col(c)));
+    return out;
+  };
+  auto cross_cols = [](const Eigen::Ref<const Mat3>& m, const Vec3& d) {  // m [d]x
+    Mat3 out;
+    for (int r = 0; r < 3; ++r) out.row(r) = -d.cross(Vec3(m.row(r).transpose())).transpose();
+    return out;
+  };
+  // B T_j = [[B11, B12 - B11 [dj]x], [B21, B22 - B21 [dj]x]]
+  const Mat3 x12 = b.block<3, 3>(0, 3) - cross_cols(b.block<3, 3>(0, 0), dj);
+  const Mat3 x22 = b.block<3, 3>(3, 3) - cross_cols(b.block<3, 3>(3, 0), dj);
+  // T_i^T X = [[X11, X12], [[di]x X11 + X21, [di]x X12 + X22]]
+  Mat6 out;
+  out.block<3, 3>(0, 0) = b.block<3, 3>(0, 0);
+  out.block<3, 3>(0, 3) = x12;
+  out.block<3, 3>(3, 0) = cross_rows(di, b.block<3, 3>(0, 0)) + b.block<3, 3>(3, 0);
+  out.block<3, 3>(3, 3) = cross_rows(di, x12) + x22;
+  return out;
+}
+
+}  // namespace
+
+struct RigidMultigrid::Level {
+  const BlockMatrix* matrix = nullptr;  // the caller's on the fine level, else `own`
+  BlockMatrix own;
+  BodyPartition partition;
+  std::vector<Mat6f> diag_inverse;
+  std::vector<Vec3> position;  // of the bodies, at set_matrix
+  // Towards the next coarser level (empty on the coarsest):
+  std::vector<int> parent;  // body -> cluster
+  std::vector<Vec3> arm;    // body position - its cluster's
+  // Galerkin sources of this level's blocks in the next finer level (empty on the fine one):
+  std::vector<int> child_begin, children;     // cluster -> finer bodies
+  std::vector<int> internal_begin, internal;  // cluster -> finer pairs inside it
+  std::vector<int> source_begin, sources;     // pair -> 2 * finer pair + (1 if flipped)
+  BlockVector rhs, x, residual;
+  BlockVector krylov[5];  // work vectors of the K-cycle's coarse correction
+};
+
+struct RigidMultigrid::Coarsest {
+  SparseMatrix matrix;  // lower triangle, all 36 entries of every block
+  std::vector<std::array<int, 36>> diag_slots, off_slots;
+  Eigen::CholmodSimplicialLLT<SparseMatrix, Eigen::Lower> factor;
+  bool analyzed = false;
+};
+
+RigidMultigrid::RigidMultigrid(const RigidSystem& fine,
+                               const std::vector<std::pair<int, int>>& fine_pairs,
+                               const MultigridOptions& options)
+    : options_(options) {
+  HierarchyOptions hierarchy_options;
+  hierarchy_options.cluster_size = options.cluster_size;
+  hierarchy_options.coarsest_max_bodies = options.coarsest_max_bodies;
+  hierarchy_options.max_levels = 12;
+  const ClusterHierarchy hierarchy = build_cluster_hierarchy(fine, hierarchy_options);
+
+  auto fine_level = std::make_unique<Level>();
+  fine_level->own.set_structure(0, {});
+  const int n_fine = fine.n_bodies();
+  fine_level->position.resize(size_t(n_fine));
+  for (int b = 0; b < n_fine; ++b)
+    fine_level->position[size_t(b)] = fine.bodies[size_t(b)].rest_center;
+  std::vector<std::pair<int, int>> pairs = fine_pairs;
+  int n = n_fine;
+  levels_.push_back(std::move(fine_level));
+  for (int l = 0; l < hierarchy.coarse_levels(); ++l) {
+    Level& finer = *levels_.back();
+    const int n_coarse = hierarchy.cluster_count[size_t(l)];
+    finer.parent.assign(size_t(n), -1);
+    for (int b = 0; b < n_fine; ++b) {
+      const int child = l == 0 ? b : hierarchy.cluster_of[size_t(l) - 1][size_t(b)];
+      finer.parent[size_t(child)] = hierarchy.cluster_of[size_t(l)][size_t(b)];
+    }
+    auto level = std::make_unique<Level>();
+    Level& coarse = *level;
+    // Children and rest positions (the mean of the children's) of the clusters.
+    coarse.child_begin.assign(size_t(n_coarse) + 1, 0);
+    for (int b = 0; b < n; ++b) ++coarse.child_begin[size_t(finer.parent[size_t(b)]) + 1];
+    for (int c = 0; c < n_coarse; ++c)
+      coarse.child_begin[size_t(c) + 1] += coarse.child_begin[size_t(c)];
+    coarse.children.resize(size_t(n));
+    std::vector<int> next(coarse.child_begin.begin(), coarse.child_begin.end() - 1);
+    for (int b = 0; b < n; ++b)
+      coarse.children[size_t(next[size_t(finer.parent[size_t(b)])]++)] = b;
+    coarse.position.assign(size_t(n_coarse), Vec3::Zero());
+    for (int c = 0; c < n_coarse; ++c) {
+      for (int k = coarse.child_begin[size_t(c)]; k < coarse.child_begin[size_t(c) + 1]; ++k)
+        coarse.position[size_t(c)] += finer.position[size_t(coarse.children[size_t(k)])];
+      coarse.position[size_t(c)] /=
+          double(coarse.child_begin[size_t(c) + 1] - coarse.child_begin[size_t(c)]);
+    }
+    // Pairs: finer pairs inside a cluster add to its diagonal block, the others to the
+    // block of their clusters' pair (numbered in order of first appearance).
+    std::vector<std::vector<int>> internal_of(static_cast<size_t>(n_coarse));
+    std::vector<std::pair<int, int>> coarse_pairs;
+    std::vector<std::vector<int>> sources_of;
+    std::unordered_map<long long, int> index;
+    for (size_t p = 0; p < pairs.size(); ++p) {
+      const int a = finer.parent[size_t(pairs[p].first)], b = finer.parent[size_t(pairs[p].second)];
+      if (a == b) {
+        internal_of[size_t(a)].push_back(int(p));
+        continue;
+      }
+      const int hi = std::max(a, b), lo = std::min(a, b);
+      const auto [it, inserted] =
+          index.emplace((long long)hi * n_coarse + lo, int(coarse_pairs.size()));
+      if (inserted) {
+        coarse_pairs.emplace_back(hi, lo);
+        sources_of.emplace_back();
+      }
+      sources_of[size_t(it->second)].push_back(2 * int(p) + (a == hi ? 0 : 1));
+    }
+    auto flatten = [](const std::vector<std::vector<int>>& lists, std::vector<int>& begin,
+                      std::vector<int>& items) {
+      begin.assign(1, 0);
+      items.clear();
+      for (const std::vector<int>& list : lists) {
+        items.insert(items.end(), list.begin(), list.end());
+        begin.push_back(int(items.size()));
+      }
+    };
+    flatten(internal_of, coarse.internal_begin, coarse.internal);
+    flatten(sources_of, coarse.source_begin, coarse.sources);
+    coarse.own.set_structure(n_coarse, coarse_pairs);
+    coarse.matrix = &coarse.own;
+    pairs = std::move(coarse_pairs);
+    n = n_coarse;
+    levels_.push_back(std::move(level));
+  }
+  // Smoothing partitions of every level but the coarsest, by the levels' rest positions.
+  for (size_t l = 0; l + 1 < levels_.size(); ++l) {
+    Level& level = *levels_[l];
+    const std::vector<std::pair<int, int>>& level_pairs = l == 0 ? fine_pairs : level.own.pairs;
+    std::vector<int> all(level.position.size());
+    for (size_t b = 0; b < all.size(); ++b) all[b] = int(b);
+    level.partition = partition_bodies(std::move(all), level.position, level_pairs, kBodiesPerPart,
+                                       kMaxPartLevels);
+  }
+  // The coarsest matrix's pattern, analysed once.
+  coarsest_ = std::make_unique<Coarsest>();
+  const Level& last = *levels_.back();
+  const BlockMatrix& structure = last.own;
+  const int nc = levels_.size() == 1 ? n_fine : structure.size();
+  const std::vector<std::pair<int, int>>& last_pairs =
+      levels_.size() == 1 ? fine_pairs : structure.pairs;
+  std::vector<Eigen::Triplet<double>> triplets;
+  auto add_block = [&](int rb, int cb) {
+    for (int r = 0; r < 6; ++r)
+      for (int c = 0; c < 6; ++c)
+        if (6 * rb + r >= 6 * cb + c) triplets.emplace_back(6 * rb + r, 6 * cb + c, 0.0);
+  };
+  for (int b = 0; b < nc; ++b) add_block(b, b);
+  for (const auto& [hi, lo] : last_pairs) add_block(hi, lo);
+  Coarsest& co = *coarsest_;
+  co.matrix.resize(6 * nc, 6 * nc);
+  co.matrix.setFromTriplets(triplets.begin(), triplets.end());
+  co.matrix.makeCompressed();
+  auto block_slots = [&](int rb, int cb) {
+    std::array<int, 36> s;
+    for (int r = 0; r < 6; ++r)
+      for (int c = 0; c < 6; ++c) {
+        const int gr = 6 * rb + r, gc = 6 * cb + c;
+        if (gr < gc) {
+          s[size_t(r * 6 + c)] = -1;
+          continue;
+        }
+        const int* rows = co.matrix.innerIndexPtr();
+        const int begin = co.matrix.outerIndexPtr()[gc], end = co.matrix.outerIndexPtr()[gc + 1];
+        s[size_t(r * 6 + c)] = int(std::lower_bound(rows + begin, rows + end, gr) - rows);
+      }
+    return s;
+  };
+  co.diag_slots.resize(size_t(nc));
+  for (int b = 0; b < nc; ++b) co.diag_slots[size_t(b)] = block_slots(b, b);
+  co.off_slots.resize(last_pairs.size());
+  for (size_t p = 0; p < last_pairs.size(); ++p)
+    co.off_slots[p] = block_slots(last_pairs[p].first, last_pairs[p].second);
+  co.factor.cholmod().print = 0;
+}
+
+RigidMultigrid::~RigidMultigrid() = default;
+
+int RigidMultigrid::levels() const { return int(levels_.size()); }
+int RigidMultigrid::bodies(int level) const { return int(levels_[size_t(level)]->position.size()); }
+
+bool RigidMultigrid::set_matrix(const BlockMatrix& fine, const std::vector<Vec3>& position) {
+  levels_[0]->matrix = &fine;
+  levels_[0]->position = position;
+  for (size_t l = 0; l + 1 < levels_.size(); ++l) {
+    Level& finer = *levels_[l];
+    Level& coarse = *levels_[l + 1];
+    const BlockMatrix& a = *finer.matrix;
+    const int nc = coarse.own.size();
+    // The clusters' points and the bodies' arms from them.
+    for (int c = 0; c < nc; ++c) {
+      Vec3 sum = Vec3::Zero();
+      for (int k = coarse.child_begin[size_t(c)]; k < coarse.child_begin[size_t(c) + 1]; ++k)
+        sum += finer.position[size_t(coarse.children[size_t(k)])];
+      coarse.position[size_t(c)] =
+          sum / double(coarse.child_begin[size_t(c) + 1] - coarse.child_begin[size_t(c)]);
+    }
+    finer.arm.resize(finer.parent.size());
+    for (size_t b = 0; b < finer.parent.size(); ++b)
+      finer.arm[b] = finer.position[b] - coarse.position[size_t(finer.parent[b])];
+    BlockMatrix& m = coarse.own;
+    parallel_chunks(size_t(nc), kParallelGrain / 8, [&](size_t begin, size_t end) {
+      for (size_t c = begin; c < end; ++c) {
+        Mat6 sum = Mat6::Zero();
+        for (int k = coarse.child_begin[c]; k < coarse.child_begin[c + 1]; ++k) {
+          const size_t b = size_t(coarse.children[size_t(k)]);
+          sum += transfer(a.diag[b].cast<double>(), finer.arm[b], finer.arm[b]);
+        }
+        for (int k = coarse.internal_begin[c]; k < coarse.internal_begin[c + 1]; ++k) {
+          const size_t p = size_t(coarse.internal[size_t(k)]);
+          const auto [i, j] = a.pairs[p];
+          const Mat6 block =
+              transfer(a.off[p].cast<double>(), finer.arm[size_t(i)], finer.arm[size_t(j)]);
+          sum += block + block.transpose();
+        }
+        m.diag[c] = sum.cast<BlockScalar>();
+      }
+    });
+    parallel_chunks(m.pairs.size(), kParallelGrain / 8, [&](size_t begin, size_t end) {
+      for (size_t q = begin; q < end; ++q) {
+        Mat6 sum = Mat6::Zero();
+        for (int k = coarse.source_begin[q]; k < coarse.source_begin[q + 1]; ++k) {
+          const int code = coarse.sources[size_t(k)];
+          const size_t p = size_t(code / 2);
+          const auto [i, j] = a.pairs[p];
+          const Mat6 block =
+              transfer(a.off[p].cast<double>(), finer.arm[size_t(i)], finer.arm[size_t(j)]);
+          if (code % 2 == 0)
+            sum += block;
+          else
+            sum += block.transpose();
+        }
+        m.off[q] = sum.cast<BlockScalar>();
+      }
+    });
+  }
+  // Smoothers: the inverse diagonal blocks of every level but the coarsest.
+  bool ok = true;
+  for (size_t l = 0; l + 1 < levels_.size(); ++l) {
+    Level& level = *levels_[l];
+    const BlockMatrix& a = *level.matrix;
+    level.diag_inverse.resize(a.diag.size());
+    std::vector<char> failed(a.diag.size(), 0);
+    parallel_chunks(a.diag.size(), kParallelGrain / 8, [&](size_t begin, size_t end) {
+      for (size_t b = begin; b < end; ++b) {
+        const Eigen::LLT<Mat6> llt(a.diag[b].cast<double>());
+        if (llt.info() != Eigen::Success) failed[b] = 1;
+        level.diag_inverse[b] = llt.solve(Mat6::Identity()).cast<BlockScalar>();
+      }
+    });
+    if (std::find(failed.begin(), failed.end(), 1) != failed.end()) ok = false;
+  }
+  // The coarsest level's factor.
+  Coarsest& co = *coarsest_;
+  const BlockMatrix& last = *levels_.back()->matrix;
+  double* values = co.matrix.valuePtr();
+  std::fill(values, values + co.matrix.nonZeros(), 0.0);
+  for (size_t b = 0; b < last.diag.size(); ++b)
+    for (int k = 0; k < 36; ++k)
+      if (co.diag_slots[b][size_t(k)] >= 0)
+        values[co.diag_slots[b][size_t(k)]] += double(last.diag[b](k / 6, k % 6));
+  for (size_t p = 0; p < last.pairs.size(); ++p)
+    for (int k = 0; k < 36; ++k)
+      if (co.off_slots[p][size_t(k)] >= 0)
+        values[co.off_slots[p][size_t(k)]] += double(last.off[p](k / 6, k % 6));
+  if (!co.analyzed) {
+    co.factor.analyzePattern(co.matrix);
+    co.analyzed = true;
+  }
+  co.factor.factorize(co.matrix);
+  return ok && co.factor.info() == Eigen::Success;
+}
+
+void RigidMultigrid::sweep(const Level& level, const BlockVector& rhs, BlockVector& x,
+                           bool forward) const {
+  const BlockMatrix& a = *level.matrix;
+  const auto& colours = level.partition.colours;
+  const auto& parts = level.partition.parts;
+  const size_t n_colours = colours.size();
+  for (size_t k = 0; k < n_colours; ++k) {
+    const std::vector<int>& colour = colours[forward ? k : n_colours - 1 - k];
+    parallel_tasks(colour.size(), [&](size_t t) {
+      const std::vector<int>& part = parts[size_t(colour[t])];
+      const size_t m = part.size();
+      for (size_t i = 0; i < m; ++i) {
+        const int b = part[forward ? i : m - 1 - i];
+        x[size_t(b)] =
+            level.diag_inverse[size_t(b)].cast<double>() * (rhs[size_t(b)] - a.off_product(b, x));
+      }
+    });
+  }
+}
+
+void RigidMultigrid::cycle(size_t l, const BlockVector& rhs, BlockVector& x) {
+  Level& level = *levels_[l];
+  const BlockMatrix& a = *level.matrix;
+  const size_t n = a.diag.size();
+  x.assign(n, Vec6::Zero());
+  if (l + 1 == levels_.size()) {
+    Eigen::VectorXd b(6 * Eigen::Index(n));
+    for (size_t i = 0; i < n; ++i) b.segment<6>(6 * Eigen::Index(i)) = rhs[i];
+    const Eigen::VectorXd solution = coarsest_->factor.solve(b);
+    for (size_t i = 0; i < n; ++i) x[i] = solution.segment<6>(6 * Eigen::Index(i));
+    return;
+  }
+  for (int s = 0; s < options_.smoothing_sweeps; ++s) sweep(level, rhs, x, true);
+  level.residual.resize(n);
+  parallel_chunks(n, kParallelGrain / 4, [&](size_t begin, size_t end) {
+    for (size_t b = begin; b < end; ++b)
+      level.residual[b] = rhs[b] - a.diag[b].cast<double>() * x[b] - a.off_product(int(b), x);
+  });
+  Level& coarse = *levels_[l + 1];
+  const size_t nc = coarse.own.diag.size();
+  coarse.rhs.resize(nc);
+  parallel_chunks(nc, kParallelGrain / 8, [&](size_t begin, size_t end) {
+    for (size_t c = begin; c < end; ++c) {
+      Vec6 sum = Vec6::Zero();
+      for (int k = coarse.child_begin[c]; k < coarse.child_begin[c + 1]; ++k) {
+        const size_t b = size_t(coarse.children[size_t(k)]);
+        const Vec6& r = level.residual[b];
+        sum.head<3>() += r.head<3>();
+        sum.tail<3>() += level.arm[b].cross(Vec3(r.head<3>())) + r.tail<3>();
+      }
+      coarse.rhs[c] = sum;
+    }
+  });
+  if (options_.coarse_visits > 1 && l + 2 < levels_.size())
+    krylov_correction(l + 1);
+  else
+    cycle(l + 1, coarse.rhs, coarse.x);
+  parallel_chunks(n, kParallelGrain / 4, [&](size_t begin, size_t end) {
+    for (size_t b = begin; b < end; ++b) {
+      const Vec6& c = coarse.x[size_t(level.parent[b])];
+      x[b].head<3>() += c.head<3>() + Vec3(c.tail<3>()).cross(level.arm[b]);
+      x[b].tail<3>() += c.tail<3>();
+    }
+  });
+  for (int s = 0; s < options_.smoothing_sweeps; ++s) sweep(level, rhs, x, false);
+}
+
+// Two steps of flexible conjugate gradients on the coarse level's system, preconditioned by
+// its own cycle (Notay and Vassilevski's K-cycle): the coarse correction then nearly solves the
+// coarse problem, as a two-level method's would, at the cost of two coarse cycles. The
+// second step is skipped when the first left less than a quarter of the residual.
+void RigidMultigrid::krylov_correction(size_t l) {
+  Level& level = *levels_[l];
+  const BlockMatrix& a = level.own;
+  const size_t n = a.diag.size();
+  const BlockVector& rhs = level.rhs;
+  BlockVector& v1 = level.krylov[0];
+  BlockVector& w1 = level.krylov[1];
+  BlockVector& r2 = level.krylov[2];
+  BlockVector& v2 = level.krylov[3];
+  BlockVector& w2 = level.krylov[4];
+  cycle(l, rhs, v1);
+  a.multiply(v1, w1);
+  const double rho1 = dot(v1, w1), alpha1 = dot(v1, rhs);
+  BlockVector& x = level.x;
+  x.resize(n);
+  if (!(rho1 > 0.0)) {
+    x = v1;
+    return;
+  }
+  r2.resize(n);
+  parallel_chunks(n, kParallelGrain, [&](size_t begin, size_t end) {
+    for (size_t b = begin; b < end; ++b) r2[b] = rhs[b] - (alpha1 / rho1) * w1[b];
+  });
+  if (dot(r2, r2) <= 0.0625 * dot(rhs, rhs)) {
+    for (size_t b = 0; b < n; ++b) x[b] = (alpha1 / rho1) * v1[b];
+    return;
+  }
+  cycle(l, r2, v2);
+  a.multiply(v2, w2);
+  const double gamma = dot(v2, w1), beta = dot(v2, w2), alpha2 = dot(v2, r2);
+  const double rho2 = beta - gamma * gamma / rho1;
+  if (!(rho2 > 0.0)) {
+    for (size_t b = 0; b < n; ++b) x[b] = (alpha1 / rho1) * v1[b];
+    return;
+  }
+  const double c1 = alpha1 / rho1 - gamma * alpha2 / (rho1 * rho2), c2 = alpha2 / rho2;
+  parallel_chunks(n, kParallelGrain, [&](size_t begin, size_t end) {
+    for (size_t b = begin; b < end; ++b) x[b] = c1 * v1[b] + c2 * v2[b];
+  });
+}
+
+void RigidMultigrid::apply(const BlockVector& r, BlockVector& z) { cycle(0, r, z); }
+
+}  // namespace primo

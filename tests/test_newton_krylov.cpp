@@ -1,0 +1,220 @@
+// Newton-Krylov steps (newton_krylov.h) and their parts: the Hessian's blocks against finite
+// differences of the energy, the multigrid preconditioner's symmetry, and the solver's minimum
+// and iterations against the flat global solver's and the cycles'.
+
+#include <gtest/gtest.h>
+
+#include <iostream>
+#include <random>
+
+#include "primo/deformer.h"
+#include "primo/geometry.h"
+#include "primo/hierarchical_solver.h"
+#include "primo/newton_krylov.h"
+#include "primo/rigid_hessian.h"
+#include "primo/rigid_multigrid.h"
+#include "test_support.h"
+
+using namespace primo;
+using primo::test::max_distance;
+
+namespace {
+
+// A bent cylinder's state part of the way to its minimum: joints stretched, gradient nonzero.
+struct Posed {
+  test::BentCylinder c;
+  Deformer deformer;
+};
+
+Posed posed_cylinder(int around, int rings, int global_iterations) {
+  test::BentCylinder c = test::bent_cylinder(around, rings, 90.0, 30.0);
+  Deformer d(c.mesh, PrismParameters{}, c.handles);
+  SolveOptions o;
+  o.max_iterations = global_iterations;
+  o.tolerance = 0.0;
+  o.path.enabled = false;
+  d.solve(o);
+  return {std::move(c), std::move(d)};
+}
+
+BlockVector random_direction(const RigidSystem& system, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> normal;
+  BlockVector d(size_t(system.n_bodies()), Vec6::Zero());
+  for (size_t b = 0; b < d.size(); ++b)
+    if (system.bodies[b].kind == BodyKind::Free)
+      for (int k = 0; k < 6; ++k) d[b][k] = normal(rng);
+  return d;
+}
+
+}  // namespace
+
+TEST(RigidHessian, GradientAndExactHessianMatchFiniteDifferencesOfTheEnergy) {
+  Posed p = posed_cylinder(12, 16, 0);  // at rest, the handles moved: joints far stretched
+  const RigidSystem& sys = p.deformer.system();
+  const std::vector<BodyState>& state = p.deformer.body_states();
+  RigidHessian hessian(sys);
+  hessian.assemble(state, true);
+  const BlockVector d = random_direction(sys, 7);
+  const double h = 1e-4;
+  const double e0 = sys.energy(state);
+  const double e_plus = sys.energy(hessian.moved(state, d, h));
+  const double e_minus = sys.energy(hessian.moved(state, d, -h));
+  // Along exp(t d) the first derivative is 2 g . d and the second 2 d^T H d (a one-parameter
+  // subgroup per body): g and H are those of E / 2, as in global matching's normal equations.
+  const double slope = 2 * dot(hessian.gradient(), d);
+  const double fd_slope = (e_plus - e_minus) / (2 * h);
+  EXPECT_NEAR(slope, fd_slope, 1e-6 * std::abs(fd_slope)) << "gradient";
+  BlockVector hd;
+  hessian.matrix().multiply(d, hd);
+  const double fd_curvature = (e_plus - 2 * e0 + e_minus) / (h * h);
+  const double exact_error = std::abs(2 * dot(d, hd) - fd_curvature);
+  // Without the second-order terms it is another matrix (Gauss-Newton): the test can tell.
+  hessian.assemble(state, false);
+  hessian.matrix().multiply(d, hd);
+  const double gauss_newton_error = std::abs(2 * dot(d, hd) - fd_curvature);
+  std::cout << "[ metric   ] d^T H d against finite differences, relative error: exact "
+            << exact_error / fd_curvature << ", Gauss-Newton " << gauss_newton_error / fd_curvature
+            << "\n";
+  EXPECT_LT(exact_error, 1e-5 * std::abs(fd_curvature)) << "exact Hessian";
+  EXPECT_GT(gauss_newton_error, 100 * exact_error);
+}
+
+TEST(RigidMultigrid, AVCycleIsSymmetricAndPositiveDefiniteOnEveryLevelCount) {
+  Posed p = posed_cylinder(40, 60, 2);  // 2,400 quads
+  const RigidSystem& sys = p.deformer.system();
+  const std::vector<BodyState>& state = p.deformer.body_states();
+  RigidHessian hessian(sys);
+  hessian.assemble(state, false);
+  std::vector<Vec3> position;
+  for (const BodyState& s : state) position.push_back(s.position);
+  for (const int coarsest : {1000, 150, 20}) {
+    MultigridOptions options;
+    options.cluster_size = 4;
+    options.coarsest_max_bodies = coarsest;
+    options.coarse_visits = 1;
+    RigidMultigrid multigrid(sys, hessian.matrix().pairs, options);
+    ASSERT_TRUE(multigrid.set_matrix(hessian.matrix(), position));
+    const BlockVector a = random_direction(sys, 1), b = random_direction(sys, 2);
+    BlockVector ma, mb;
+    multigrid.apply(a, ma);
+    multigrid.apply(b, mb);
+    const double scale = std::sqrt(dot(a, ma) * dot(b, mb));
+    EXPECT_NEAR(dot(ma, b), dot(a, mb), 1e-9 * scale) << multigrid.levels() << " levels";
+    EXPECT_GT(dot(a, ma), 0.0);
+    if (coarsest == 20) {
+      EXPECT_GE(multigrid.levels(), 4);
+    }
+  }
+}
+
+TEST(RigidMultigrid, ConjugateGradientsWithTheCycleConvergeInFewIterations) {
+  // The preconditioner's purpose: a residual reduced by 1e-6 in a few iterations, where
+  // unpreconditioned conjugate gradients need hundreds.
+  Posed p = posed_cylinder(40, 60, 2);
+  const RigidSystem& sys = p.deformer.system();
+  const std::vector<BodyState>& state = p.deformer.body_states();
+  RigidHessian hessian(sys);
+  hessian.assemble(state, false);
+  const BlockMatrix& h = hessian.matrix();
+  std::vector<Vec3> position;
+  for (const BodyState& s : state) position.push_back(s.position);
+  MultigridOptions options;
+  options.cluster_size = 4;
+  options.coarsest_max_bodies = 40;
+  options.coarse_visits = 2;
+  RigidMultigrid multigrid(sys, h.pairs, options);
+  ASSERT_TRUE(multigrid.set_matrix(h, position));
+  auto iterations = [&](bool preconditioned) {
+    const BlockVector b = random_direction(sys, 3);
+    BlockVector x(b.size(), Vec6::Zero()), r = b, z, q;
+    auto precondition = [&] {
+      if (preconditioned)
+        multigrid.apply(r, z);
+      else
+        z = r;
+    };
+    precondition();
+    BlockVector d = z;
+    double rz = dot(r, z);
+    const double r0 = dot(r, r);
+    for (int it = 1; it <= 2000; ++it) {
+      h.multiply(d, q);
+      const double alpha = rz / dot(d, q);
+      for (size_t i = 0; i < x.size(); ++i) {
+        x[i] += alpha * d[i];
+        r[i] -= alpha * q[i];
+      }
+      if (dot(r, r) < 1e-12 * r0) return it;
+      precondition();
+      const double next = dot(r, z);
+      for (size_t i = 0; i < x.size(); ++i) d[i] = z[i] + next / rz * d[i];
+      rz = next;
+    }
+    return 2001;
+  };
+  const int with = iterations(true), without = iterations(false);
+  std::cout << "[ metric   ] conjugate gradients to 1e-6 of the residual: " << with
+            << " iterations with the K-cycle (" << multigrid.levels() << " levels), " << without
+            << " without\n";
+  EXPECT_LE(with, 30);
+  EXPECT_GT(without, 5 * with);
+}
+
+TEST(NewtonKrylov, StepsReachTheCyclesMinimumInFewerIterationsAndGlobalNewtonKeepsIt) {
+  const test::BentCylinder c = test::bent_cylinder(40, 60, 90.0, 30.0);
+  struct Run {
+    std::vector<Vec3> vertices;
+    std::vector<RigidTransform> motions;
+    double energy;
+    int iterations;
+    int newton_steps;
+  };
+  auto hierarchical = [&](double newton_krylov_below) {
+    Deformer d(c.mesh, PrismParameters{}, c.handles);
+    SolveOptions o;
+    o.method = SolveMethod::Hierarchical;
+    o.tolerance = 1e-10;
+    o.max_iterations = 2000;
+    o.hierarchical.hierarchy.coarsest_max_bodies = 150;
+    o.hierarchical.newton_krylov_below = newton_krylov_below;
+    const SolveReport r = d.solve(o);
+    EXPECT_TRUE(r.converged);
+    return Run{d.vertex_positions(), d.face_motions(), r.energy, r.iterations,
+               d.hierarchical_solver()->timings().newton_krylov_steps};
+  };
+  const Run with = hierarchical(1e-3), cycles = hierarchical(0.0);
+  std::cout << "[ metric   ] to a relative change of 1e-10: " << with.iterations << " iterations ("
+            << with.newton_steps << " Newton-Krylov steps) against " << cycles.iterations
+            << " cycles\n";
+  EXPECT_GT(with.newton_steps, 0);
+  EXPECT_EQ(cycles.newton_steps, 0);
+  EXPECT_LT(2 * with.iterations, cycles.iterations);
+  EXPECT_NEAR(with.energy, cycles.energy, 1e-8 * cycles.energy);
+  EXPECT_LT(max_distance(with.vertices, cycles.vertices), 1e-4 * c.diagonal);
+  // Global Newton from there (exact steps, direct solves) finds nothing left to lower.
+  Deformer polish(c.mesh, PrismParameters{}, c.handles);
+  polish.set_face_motions(with.motions);
+  SolveOptions g;
+  g.tolerance = 1e-13;
+  const SolveReport rg = polish.solve(g);
+  EXPECT_NEAR(rg.energy, with.energy, 1e-9 * with.energy);
+  EXPECT_LT(max_distance(polish.vertex_positions(), with.vertices), 1e-5 * c.diagonal);
+}
+
+TEST(NewtonKrylov, AStepThatCannotDescendHandsBackToCycles) {
+  // From rest with the handles far away, exact Newton directions are poor; whatever a step
+  // finds, the solve still ends at the minimum, and no step raises the energy.
+  const test::BentCylinder c = test::bent_cylinder(16, 24, 150.0, 60.0);
+  Deformer d(c.mesh, PrismParameters{}, c.handles);
+  NewtonKrylov solver(d.system());
+  std::vector<BodyState> state = d.body_states();
+  double energy = d.system().energy(state);
+  for (int k = 0; k < 5; ++k) {
+    const NewtonKrylovStep step = solver.iterate(state, energy);
+    EXPECT_LE(step.energy_after, step.energy_before);
+    EXPECT_EQ(step.decreased, step.energy_after < step.energy_before);
+    EXPECT_DOUBLE_EQ(d.system().energy(state), step.energy_after);
+    energy = step.energy_after;
+  }
+}
