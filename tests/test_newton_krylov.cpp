@@ -10,6 +10,7 @@
 #include "primo/deformer.h"
 #include "primo/geometry.h"
 #include "primo/hierarchical_solver.h"
+#include "primo/mesh_io.h"
 #include "primo/newton_krylov.h"
 #include "primo/rigid_hessian.h"
 #include "primo/rigid_multigrid.h"
@@ -37,14 +38,46 @@ Posed posed_cylinder(int around, int rings, int global_iterations) {
   return {std::move(c), std::move(d)};
 }
 
+// Random in every dof a body has: all six when free, omega when its position is pinned, v
+// when its rotation is fixed.
 BlockVector random_direction(const RigidSystem& system, unsigned seed) {
   std::mt19937 rng(seed);
   std::normal_distribution<double> normal;
   BlockVector d(size_t(system.n_bodies()), Vec6::Zero());
-  for (size_t b = 0; b < d.size(); ++b)
-    if (system.bodies[b].kind == BodyKind::Free)
-      for (int k = 0; k < 6; ++k) d[b][k] = normal(rng);
+  for (size_t b = 0; b < d.size(); ++b) {
+    const BodyKind kind = system.bodies[b].kind;
+    for (int k = 0; k < 6; ++k)
+      if (kind == BodyKind::Free || (kind == BodyKind::PinnedPosition && k >= 3) ||
+          (kind == BodyKind::FixedRotation && k < 3))
+        d[b][k] = normal(rng);
+  }
   return d;
+}
+
+// Spot (assets/meshes) with every kind of body: feet fixed, the head pinned in position (it
+// turns freely) or turned with its position free, and a spring pulling the tail sideways.
+struct SpotCase {
+  Mesh mesh;
+  std::vector<Handle> handles;
+  std::vector<Force> forces;
+};
+SpotCase spot_with_every_body_kind(Fix head_fix) {
+  SpotCase s;
+  s.mesh = load_mesh(test::source_path("assets/meshes/spot_quadrangulated.obj"));
+  Handle feet{
+      "feet", test::faces_where(s.mesh, [](const Vec3& p) { return p.y() < -0.6; }), Fix::All, {}};
+  Handle head{"head",
+              test::faces_where(
+                  s.mesh, [](const Vec3& p) { return (p - Vec3(0, 0.2, 0.95)).norm() < 0.2; }),
+              head_fix,
+              {}};
+  head.transform =
+      make_rigid_transform(Vec3(0.2, 0.15, -0.05), Vec3::UnitY(), 25.0, Vec3(0, 0.2, 0.95));
+  s.handles = {feet, head};
+  s.forces = {Force{
+      "pull", test::faces_where(s.mesh, [](const Vec3& p) { return p.z() < -0.55 && p.y() > 0.0; }),
+      Vec3(0.2, 0.1, 0.0), 50.0}};
+  return s;
 }
 
 }  // namespace
@@ -216,5 +249,46 @@ TEST(NewtonKrylov, AStepThatCannotDescendHandsBackToCycles) {
     EXPECT_EQ(step.decreased, step.energy_after < step.energy_before);
     EXPECT_DOUBLE_EQ(d.system().energy(state), step.energy_after);
     energy = step.energy_after;
+  }
+}
+
+TEST(NewtonKrylov, PinnedAndTurnedHandlesAndSpringsKeepTheirDerivativesAndTheFlatMinimum) {
+  for (const Fix head_fix : {Fix::Position, Fix::Orientation}) {
+    const SpotCase s = spot_with_every_body_kind(head_fix);
+    ASSERT_FALSE(s.forces[0].faces.empty());
+    Deformer flat(s.mesh, PrismParameters{}, s.handles, s.forces);
+    // The derivatives with masked dofs, at rest (handles moved, the spring pulling).
+    const RigidSystem& sys = flat.system();
+    const std::vector<BodyState> rest = flat.body_states();
+    RigidHessian hessian(sys);
+    hessian.assemble(rest, true);
+    const BlockVector d = random_direction(sys, 11);
+    const double h = 1e-4;
+    const double e0 = sys.energy(rest), e_plus = sys.energy(hessian.moved(rest, d, h)),
+                 e_minus = sys.energy(hessian.moved(rest, d, -h));
+    EXPECT_NEAR(2 * dot(hessian.gradient(), d), (e_plus - e_minus) / (2 * h),
+                1e-6 * std::abs(e_plus - e_minus) / (2 * h));
+    BlockVector hd;
+    hessian.matrix().multiply(d, hd);
+    const double fd_curvature = (e_plus - 2 * e0 + e_minus) / (h * h);
+    EXPECT_NEAR(2 * dot(d, hd), fd_curvature, 1e-5 * std::abs(fd_curvature));
+
+    SolveOptions g;
+    g.tolerance = 1e-11;
+    ASSERT_TRUE(flat.solve(g).converged);
+    Deformer hier(s.mesh, PrismParameters{}, s.handles, s.forces);
+    SolveOptions o;
+    o.method = SolveMethod::Hierarchical;
+    o.tolerance = 1e-10;
+    o.max_iterations = 2000;
+    o.hierarchical.hierarchy.coarsest_max_bodies = 150;
+    o.hierarchical.newton_krylov_below = 1e-3;
+    const SolveReport r = hier.solve(o);
+    EXPECT_TRUE(r.converged);
+    EXPECT_GT(hier.hierarchical_solver()->timings().newton_krylov_steps, 0);
+    const double diagonal = bounding_box_diagonal(s.mesh);
+    EXPECT_NEAR(r.energy, flat.energy(), 1e-6 * flat.energy()) << fix_name(head_fix);
+    EXPECT_LT(max_distance(hier.vertex_positions(), flat.vertex_positions()), 1e-4 * diagonal)
+        << fix_name(head_fix);
   }
 }
