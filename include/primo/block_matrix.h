@@ -1,7 +1,7 @@
 #pragma once
 // A symmetric matrix of 6x6 blocks with one row of blocks per body: the Hessian of the joint
 // and spring energy in the bodies' motions (v, omega), or its projection onto clusters of
-// bodies (rigid_multigrid.h). Only the diagonal blocks and one block per coupled pair are
+// bodies (rigid_multigrid.h). Only the diagonal blocks and the blocks of coupled pairs are
 // stored; a vector is one Vec6 per body.
 
 #include <utility>
@@ -19,31 +19,32 @@ using Mat6f = Eigen::Matrix<BlockScalar, 6, 6>;
 
 struct BlockMatrix {
   std::vector<Mat6f> diag;
-  // The coupled pairs (row body, column body), row > column, each once, and their blocks.
+  // The coupled pairs (row body, column body), row > column, each once.
   std::vector<std::pair<int, int>> pairs;
-  std::vector<Mat6f> off;
-  // Each body's pairs (CSR over bodies, in pair order), made by index_rows().
+  // Each body's off-diagonal blocks, contiguous by row (CSR over bodies, in pair order): the
+  // block of the row body against `row_column`. Every pair's block is stored twice, as
+  // itself in its first body's row and transposed in its second's, so that a product
+  // streams each row without gathering or transposing (it is bound by memory traffic).
   std::vector<int> row_begin;
-  std::vector<int> row_pairs;
+  std::vector<int> row_column;
+  std::vector<Mat6f> row_block;
+  std::vector<int> pair_slot, pair_slot_transposed;  // where pair p's two copies are
 
   int size() const { return int(diag.size()); }
-  // Sizes diag and off (zero) and indexes the rows, for `n` bodies and the given pairs.
+  // Sizes diag and the rows (zero) for `n` bodies and the given pairs.
   void set_structure(int n, std::vector<std::pair<int, int>> coupled_pairs);
-  // The block of row `body` and column `other` of pair p (the stored one or its transpose).
-  int other_body(int p, int body) const {
-    return pairs[size_t(p)].first == body ? pairs[size_t(p)].second : pairs[size_t(p)].first;
+  // The block of pair p (rows of its first body, columns of its second), and setting it.
+  const Mat6f& off(size_t p) const { return row_block[size_t(pair_slot[p])]; }
+  void set_off(size_t p, const Mat6f& block) {
+    row_block[size_t(pair_slot[p])] = block;
+    row_block[size_t(pair_slot_transposed[p])] = block.transpose();
   }
   // sum over the body's off-diagonal blocks of block * x[column], in row order.
   Vec6 off_product(int body, const BlockVector& x) const {
     Vec6 sum = Vec6::Zero();
-    for (int k = row_begin[size_t(body)]; k < row_begin[size_t(body) + 1]; ++k) {
-      const int p = row_pairs[size_t(k)];
-      if (pairs[size_t(p)].first == body)
-        sum.noalias() += off[size_t(p)].cast<double>() * x[size_t(pairs[size_t(p)].second)];
-      else
-        sum.noalias() +=
-            off[size_t(p)].transpose().cast<double>() * x[size_t(pairs[size_t(p)].first)];
-    }
+    const int end = row_begin[size_t(body) + 1];
+    for (int k = row_begin[size_t(body)]; k < end; ++k)
+      sum.noalias() += row_block[size_t(k)].cast<double>() * x[size_t(row_column[size_t(k)])];
     return sum;
   }
   // y = A x, in parallel by rows (the same bits on any number of threads).

@@ -69,8 +69,8 @@ struct HierarchicalOptions {
   // cycles (newton_krylov.h): the cycles' tail converges linearly, Newton quadratically where
   // the Hessian is well conditioned. A step that fails to lower the energy hands back to
   // cycles until the targets move. 0 (the default): cycles only. Measured with 1e-3
-  // (docs/performance.md, "Newton-Krylov steps"): at 240k faces a drag settled in 1.6 s
-  // instead of 2.3 s, but the 100k koala settled in 3.9 s instead of 2.1 s (its Newton steps
+  // (docs/performance.md, "Newton-Krylov steps"): at 240k faces a drag settled in 1.6-2.1 s
+  // instead of 2.3-2.5 s, but the 100k koala settled in 3.0 s instead of 2.1 s (its Newton steps
   // converge linearly) and the 29k armadillo in 0.36 s instead of 0.29 s, and full solves
   // gained little; so it stays an option.
   double newton_krylov_below = 0.0;

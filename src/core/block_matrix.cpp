@@ -7,18 +7,23 @@ namespace primo {
 void BlockMatrix::set_structure(int n, std::vector<std::pair<int, int>> coupled_pairs) {
   pairs = std::move(coupled_pairs);
   diag.assign(size_t(n), Mat6f::Zero());
-  off.assign(pairs.size(), Mat6f::Zero());
   row_begin.assign(size_t(n) + 1, 0);
   for (const auto& [a, b] : pairs) {
     ++row_begin[size_t(a) + 1];
     ++row_begin[size_t(b) + 1];
   }
   for (int b = 0; b < n; ++b) row_begin[size_t(b) + 1] += row_begin[size_t(b)];
-  row_pairs.resize(size_t(row_begin[size_t(n)]));
+  row_column.resize(size_t(row_begin[size_t(n)]));
+  row_block.assign(row_column.size(), Mat6f::Zero());
+  pair_slot.resize(pairs.size());
+  pair_slot_transposed.resize(pairs.size());
   std::vector<int> next(row_begin.begin(), row_begin.end() - 1);
   for (size_t p = 0; p < pairs.size(); ++p) {
-    row_pairs[size_t(next[size_t(pairs[p].first)]++)] = int(p);
-    row_pairs[size_t(next[size_t(pairs[p].second)]++)] = int(p);
+    const auto [a, b] = pairs[p];
+    pair_slot[p] = next[size_t(a)]++;
+    row_column[size_t(pair_slot[p])] = b;
+    pair_slot_transposed[p] = next[size_t(b)]++;
+    row_column[size_t(pair_slot_transposed[p])] = a;
   }
 }
 

@@ -102,7 +102,7 @@ void RigidHessian::assemble(const std::vector<BodyState>& state, bool second_ord
         if (!(m0 & (1 << d))) h01.row(d).setZero();
         if (!(m1 & (1 << d))) h01.col(d).setZero();
       }
-      matrix_.off[p] = h01.cast<BlockScalar>();
+      matrix_.set_off(p, h01.cast<BlockScalar>());
     }
   });
 }

@@ -240,7 +240,7 @@ bool RigidMultigrid::set_matrix(const BlockMatrix& fine, const std::vector<Vec3>
           const size_t p = size_t(coarse.internal[size_t(k)]);
           const auto [i, j] = a.pairs[p];
           const Mat6 block =
-              transfer(a.off[p].cast<double>(), finer.arm[size_t(i)], finer.arm[size_t(j)]);
+              transfer(a.off(p).cast<double>(), finer.arm[size_t(i)], finer.arm[size_t(j)]);
           sum += block + block.transpose();
         }
         m.diag[c] = sum.cast<BlockScalar>();
@@ -254,13 +254,13 @@ bool RigidMultigrid::set_matrix(const BlockMatrix& fine, const std::vector<Vec3>
           const size_t p = size_t(code / 2);
           const auto [i, j] = a.pairs[p];
           const Mat6 block =
-              transfer(a.off[p].cast<double>(), finer.arm[size_t(i)], finer.arm[size_t(j)]);
+              transfer(a.off(p).cast<double>(), finer.arm[size_t(i)], finer.arm[size_t(j)]);
           if (code % 2 == 0)
             sum += block;
           else
             sum += block.transpose();
         }
-        m.off[q] = sum.cast<BlockScalar>();
+        m.set_off(q, sum.cast<BlockScalar>());
       }
     });
   }
@@ -292,7 +292,7 @@ bool RigidMultigrid::set_matrix(const BlockMatrix& fine, const std::vector<Vec3>
   for (size_t p = 0; p < last.pairs.size(); ++p)
     for (int k = 0; k < 36; ++k)
       if (co.off_slots[p][size_t(k)] >= 0)
-        values[co.off_slots[p][size_t(k)]] += double(last.off[p](k / 6, k % 6));
+        values[co.off_slots[p][size_t(k)]] += double(last.off(p)(k / 6, k % 6));
   if (!co.analyzed) {
     co.factor.analyzePattern(co.matrix);
     co.analyzed = true;
