@@ -51,6 +51,24 @@ struct BlockMatrix {
   void multiply(const BlockVector& x, BlockVector& y) const;
 };
 
+// The distinct unordered pairs among `edges` (pairs of bodies), numbered in order of first
+// appearance, each as (higher, lower); `pair_of[k]` is edge k's pair. Edges joining a body to
+// itself, or with a negative end, are left out (-1). The Hessian's pairs come from the
+// couplings, a coarse level's from the finer level's pairs mapped to their clusters.
+struct PairNumbering {
+  std::vector<std::pair<int, int>> pairs;
+  std::vector<int> pair_of;
+};
+PairNumbering number_pairs(const std::vector<std::pair<int, int>>& edges);
+
+// Items 0..key.size()-1 grouped by their key in [0, n_keys) (CSR: group g holds
+// items[begin[g]..begin[g + 1]), in ascending order); items with a negative key are left out.
+struct Groups {
+  std::vector<int> begin;
+  std::vector<int> items;
+};
+Groups group_by(const std::vector<int>& key, int n_keys);
+
 // sum of a_i . b_i, in a fixed order (parallel_sum's chunks).
 double dot(const BlockVector& a, const BlockVector& b);
 

@@ -19,11 +19,17 @@ struct BodyPartition {
   std::vector<std::vector<int>> colours;  // each colour's parts, in index order
 };
 
-// `bodies` (those that move) split about `bodies_per_part` a part, at most 2^max_levels parts;
-// `edges` are the coupled pairs of bodies (any order, repeats allowed), `position` is indexed
-// by body.
+// Bodies a part should have: a part is one task, and a task needs about a millisecond of
+// matching to pay for itself.
+inline constexpr size_t kBodiesPerPart = 2000;
+inline constexpr int kMaxPartLevels = 7;  // at most 2^7 = 128 parts
+
+// `bodies` (those that move) split about `bodies_per_part` a part, at most 2^max_levels parts
+// (0: one part); `edges` are the coupled pairs of bodies (any order, repeats allowed),
+// `position` is indexed by body.
 BodyPartition partition_bodies(std::vector<int> bodies, const std::vector<Vec3>& position,
                                const std::vector<std::pair<int, int>>& edges,
-                               size_t bodies_per_part, int max_levels);
+                               size_t bodies_per_part = kBodiesPerPart,
+                               int max_levels = kMaxPartLevels);
 
 }  // namespace primo

@@ -30,7 +30,7 @@ class RigidHessian {
  private:
   const RigidSystem& system_;
   std::vector<int> mask_;                         // active_mask of each body
-  std::vector<int> pair_begin_, pair_couplings_;  // each pair's couplings
+  Groups pair_couplings_;                         // each pair's couplings
   BlockMatrix matrix_;
   BlockVector gradient_;
 };

@@ -1,5 +1,9 @@
 #include "primo/block_matrix.h"
 
+#include <algorithm>
+#include <cstdint>
+#include <unordered_map>
+
 #include "primo/parallel.h"
 
 namespace primo {
@@ -33,6 +37,35 @@ void BlockMatrix::multiply(const BlockVector& x, BlockVector& y) const {
     for (size_t b = begin; b < end; ++b)
       y[b] = diag[b].cast<double>() * x[b] + off_product(int(b), x);
   });
+}
+
+PairNumbering number_pairs(const std::vector<std::pair<int, int>>& edges) {
+  PairNumbering numbering;
+  numbering.pair_of.assign(edges.size(), -1);
+  std::unordered_map<std::uint64_t, int> index;
+  for (size_t k = 0; k < edges.size(); ++k) {
+    const auto [a, b] = edges[k];
+    if (a < 0 || b < 0 || a == b) continue;
+    const int hi = std::max(a, b), lo = std::min(a, b);
+    const std::uint64_t key = (std::uint64_t(std::uint32_t(hi)) << 32) | std::uint32_t(lo);
+    const auto [it, inserted] = index.emplace(key, int(numbering.pairs.size()));
+    if (inserted) numbering.pairs.emplace_back(hi, lo);
+    numbering.pair_of[k] = it->second;
+  }
+  return numbering;
+}
+
+Groups group_by(const std::vector<int>& key, int n_keys) {
+  Groups groups;
+  groups.begin.assign(size_t(n_keys) + 1, 0);
+  for (int k : key)
+    if (k >= 0) ++groups.begin[size_t(k) + 1];
+  for (int g = 0; g < n_keys; ++g) groups.begin[size_t(g) + 1] += groups.begin[size_t(g)];
+  groups.items.resize(size_t(groups.begin[size_t(n_keys)]));
+  std::vector<int> next(groups.begin.begin(), groups.begin.end() - 1);
+  for (size_t i = 0; i < key.size(); ++i)
+    if (key[i] >= 0) groups.items[size_t(next[size_t(key[i])]++)] = int(i);
+  return groups;
 }
 
 double dot(const BlockVector& a, const BlockVector& b) {

@@ -14,8 +14,8 @@
 #include <system_error>
 #include <thread>
 #include <tuple>
-#include <unordered_map>
 
+#include "primo/block_matrix.h"
 #include "primo/horn.h"
 #include "primo/parallel.h"
 #include "rigid_blocks.h"
@@ -193,17 +193,9 @@ void GlobalSolver::Impl::build_pattern() {
     active[b] = mask != 0;
   }
 
-  std::unordered_map<long long, int> pair_index;
-  coupling_pair.assign(sys.couplings.size(), -1);
-  for (size_t c = 0; c < sys.couplings.size(); ++c) {
-    const int b0 = sys.couplings[c].body[0], b1 = sys.couplings[c].body[1];
-    if (!active[b0] || !active[b1]) continue;
-    const int hi = std::max(b0, b1), lo = std::min(b0, b1);
-    const long long key = (long long)hi * nb + lo;
-    auto [it, inserted] = pair_index.emplace(key, int(pairs.size()));
-    if (inserted) pairs.emplace_back(hi, lo);
-    coupling_pair[c] = it->second;
-  }
+  PairNumbering numbering = number_pairs(moving_coupling_edges(sys));
+  pairs = std::move(numbering.pairs);
+  coupling_pair = std::move(numbering.pair_of);
 
   std::vector<Eigen::Triplet<double>> triplets;
   auto add_block = [&](int rb, int cb) {

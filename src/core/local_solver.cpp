@@ -152,15 +152,6 @@ void local_sweep(const RigidSystem& system, std::vector<BodyState>& state) {
   for (int b = 0; b < system.n_bodies(); ++b) state[b] = local_match(system, state, b);
 }
 
-namespace {
-
-// Bodies a part of a sweep should have: a part is one task, and a task needs about a
-// millisecond of matching to pay for itself.
-constexpr size_t kBodiesPerPart = 2000;
-constexpr int kMaxPartLevels = 7;  // at most 2^7 = 128 parts
-
-}  // namespace
-
 SweepPlan plan_sweep(const RigidSystem& system, bool parallel) {
   SweepPlan plan;
   const int n = system.n_bodies();

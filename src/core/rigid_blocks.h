@@ -4,6 +4,7 @@
 // (newton_krylov.cpp). A body's motion is linearized as dX = v + omega x y, y = R * local:
 // local dof order v (0..2), omega (3..5).
 
+#include <utility>
 #include <vector>
 
 #include "primo/bilinear_inner_product.h"
@@ -24,6 +25,19 @@ inline int active_mask(BodyKind kind) {
       return 0;
   }
   return 0;
+}
+
+// The couplings as edges between bodies, (-1, -1) where a side cannot move (a fixed handle):
+// such a coupling adds to the other side's diagonal block only, never to a pair's.
+inline std::vector<std::pair<int, int>> moving_coupling_edges(const RigidSystem& system) {
+  std::vector<std::pair<int, int>> edges;
+  edges.reserve(system.couplings.size());
+  for (const RigidSystem::Coupling& c : system.couplings) {
+    const bool moving = active_mask(system.bodies[size_t(c.body[0])].kind) != 0 &&
+                        active_mask(system.bodies[size_t(c.body[1])].kind) != 0;
+    edges.emplace_back(moving ? c.body[0] : -1, moving ? c.body[1] : -1);
+  }
+  return edges;
 }
 
 inline Mat3 cross_matrix(const Vec3& a) {

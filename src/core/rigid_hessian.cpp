@@ -1,8 +1,5 @@
 #include "primo/rigid_hessian.h"
 
-#include <algorithm>
-#include <unordered_map>
-
 #include "primo/global_solver.h"
 #include "primo/parallel.h"
 #include "rigid_blocks.h"
@@ -19,26 +16,9 @@ RigidHessian::RigidHessian(const RigidSystem& system) : system_(system) {
   mask_.resize(size_t(n));
   for (int b = 0; b < n; ++b) mask_[size_t(b)] = active_mask(system.bodies[size_t(b)].kind);
   // One block per pair of coupled bodies that both move, numbered in coupling order.
-  std::unordered_map<long long, int> index;
-  std::vector<std::pair<int, int>> pairs;
-  std::vector<std::vector<int>> couplings_of;
-  for (size_t c = 0; c < system.couplings.size(); ++c) {
-    const int b0 = system.couplings[c].body[0], b1 = system.couplings[c].body[1];
-    if (mask_[size_t(b0)] == 0 || mask_[size_t(b1)] == 0) continue;
-    const int hi = std::max(b0, b1), lo = std::min(b0, b1);
-    const auto [it, inserted] = index.emplace((long long)hi * n + lo, int(pairs.size()));
-    if (inserted) {
-      pairs.emplace_back(hi, lo);
-      couplings_of.emplace_back();
-    }
-    couplings_of[size_t(it->second)].push_back(int(c));
-  }
-  pair_begin_.assign(1, 0);
-  for (const std::vector<int>& list : couplings_of) {
-    pair_couplings_.insert(pair_couplings_.end(), list.begin(), list.end());
-    pair_begin_.push_back(int(pair_couplings_.size()));
-  }
-  matrix_.set_structure(n, std::move(pairs));
+  PairNumbering numbering = number_pairs(moving_coupling_edges(system));
+  pair_couplings_ = group_by(numbering.pair_of, int(numbering.pairs.size()));
+  matrix_.set_structure(n, std::move(numbering.pairs));
   gradient_.assign(size_t(n), Vec6::Zero());
 }
 
@@ -85,8 +65,8 @@ void RigidHessian::assemble(const std::vector<BodyState>& state, bool second_ord
     for (size_t p = begin; p < end; ++p) {
       Mat6 h01 = Mat6::Zero();
       const int first = matrix_.pairs[p].first;
-      for (int k = pair_begin_[p]; k < pair_begin_[p + 1]; ++k) {
-        const RigidSystem::Coupling& c = sys.couplings[size_t(pair_couplings_[size_t(k)])];
+      for (int k = pair_couplings_.begin[p]; k < pair_couplings_.begin[p + 1]; ++k) {
+        const RigidSystem::Coupling& c = sys.couplings[size_t(pair_couplings_.items[size_t(k)])];
         Mat6 block = Mat6::Zero();
         for_each_residual(c, state[size_t(c.body[0])], state[size_t(c.body[1])],
                           [&](const Vec3& y0, const Vec3& y1, const Vec3&, double w, bool point) {

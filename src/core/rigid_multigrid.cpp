@@ -4,7 +4,6 @@
 #include <Eigen/CholmodSupport>
 #include <Eigen/SparseCore>
 #include <algorithm>
-#include <unordered_map>
 
 #include "primo/body_partition.h"
 #include "primo/cluster_hierarchy.h"
@@ -14,10 +13,6 @@ namespace primo {
 namespace {
 
 using SparseMatrix = Eigen::SparseMatrix<double>;
-
-// Bodies per part of a smoothing sweep (as local matching's: a part is one task).
-constexpr size_t kBodiesPerPart = 2000;
-constexpr int kMaxPartLevels = 7;
 
 // T_i^T B T_j for the rigid transfers T = [[I, -[d]x], [0, I]] (a cluster's (v, omega) to a
 // body's, d the body's arm from the cluster's point), in 3x3 blocks.
@@ -56,9 +51,18 @@ struct RigidMultigrid::Level {
   std::vector<int> parent;  // body -> cluster
   std::vector<Vec3> arm;    // body position - its cluster's
   // Galerkin sources of this level's blocks in the next finer level (empty on the fine one):
-  std::vector<int> child_begin, children;     // cluster -> finer bodies
-  std::vector<int> internal_begin, internal;  // cluster -> finer pairs inside it
-  std::vector<int> source_begin, sources;     // pair -> 2 * finer pair + (1 if flipped)
+  Groups children;  // cluster -> finer bodies
+  Groups internal;  // cluster -> finer pairs inside it
+  Groups sources;   // pair -> finer pairs joining its two clusters
+  // Positions as the means of the children's.
+  void take_mean_positions(const Level& finer) {
+    for (size_t c = 0; c < position.size(); ++c) {
+      Vec3 sum = Vec3::Zero();
+      for (int k = children.begin[c]; k < children.begin[c + 1]; ++k)
+        sum += finer.position[size_t(children.items[size_t(k)])];
+      position[c] = sum / double(children.begin[c + 1] - children.begin[c]);
+    }
+  }
   BlockVector rhs, x, residual;
   BlockVector krylov[5];  // work vectors of the K-cycle's coarse correction
 };
@@ -99,54 +103,21 @@ RigidMultigrid::RigidMultigrid(const RigidSystem& fine,
     }
     auto level = std::make_unique<Level>();
     Level& coarse = *level;
-    // Children and rest positions (the mean of the children's) of the clusters.
-    coarse.child_begin.assign(size_t(n_coarse) + 1, 0);
-    for (int b = 0; b < n; ++b) ++coarse.child_begin[size_t(finer.parent[size_t(b)]) + 1];
-    for (int c = 0; c < n_coarse; ++c)
-      coarse.child_begin[size_t(c) + 1] += coarse.child_begin[size_t(c)];
-    coarse.children.resize(size_t(n));
-    std::vector<int> next(coarse.child_begin.begin(), coarse.child_begin.end() - 1);
-    for (int b = 0; b < n; ++b)
-      coarse.children[size_t(next[size_t(finer.parent[size_t(b)])]++)] = b;
-    coarse.position.assign(size_t(n_coarse), Vec3::Zero());
-    for (int c = 0; c < n_coarse; ++c) {
-      for (int k = coarse.child_begin[size_t(c)]; k < coarse.child_begin[size_t(c) + 1]; ++k)
-        coarse.position[size_t(c)] += finer.position[size_t(coarse.children[size_t(k)])];
-      coarse.position[size_t(c)] /=
-          double(coarse.child_begin[size_t(c) + 1] - coarse.child_begin[size_t(c)]);
-    }
-    // Pairs: finer pairs inside a cluster add to its diagonal block, the others to the
-    // block of their clusters' pair (numbered in order of first appearance).
-    std::vector<std::vector<int>> internal_of(static_cast<size_t>(n_coarse));
-    std::vector<std::pair<int, int>> coarse_pairs;
-    std::vector<std::vector<int>> sources_of;
-    std::unordered_map<long long, int> index;
+    coarse.children = group_by(finer.parent, n_coarse);
+    coarse.position.resize(size_t(n_coarse));
+    coarse.take_mean_positions(finer);  // rest positions, for the smoothing partition
+    // Finer pairs inside a cluster add to its diagonal block, the others to the block of
+    // their clusters' pair.
+    std::vector<std::pair<int, int>> edges(pairs.size());
+    std::vector<int> inside(pairs.size(), -1);
     for (size_t p = 0; p < pairs.size(); ++p) {
-      const int a = finer.parent[size_t(pairs[p].first)], b = finer.parent[size_t(pairs[p].second)];
-      if (a == b) {
-        internal_of[size_t(a)].push_back(int(p));
-        continue;
-      }
-      const int hi = std::max(a, b), lo = std::min(a, b);
-      const auto [it, inserted] =
-          index.emplace((long long)hi * n_coarse + lo, int(coarse_pairs.size()));
-      if (inserted) {
-        coarse_pairs.emplace_back(hi, lo);
-        sources_of.emplace_back();
-      }
-      sources_of[size_t(it->second)].push_back(2 * int(p) + (a == hi ? 0 : 1));
+      edges[p] = {finer.parent[size_t(pairs[p].first)], finer.parent[size_t(pairs[p].second)]};
+      if (edges[p].first == edges[p].second) inside[p] = edges[p].first;
     }
-    auto flatten = [](const std::vector<std::vector<int>>& lists, std::vector<int>& begin,
-                      std::vector<int>& items) {
-      begin.assign(1, 0);
-      items.clear();
-      for (const std::vector<int>& list : lists) {
-        items.insert(items.end(), list.begin(), list.end());
-        begin.push_back(int(items.size()));
-      }
-    };
-    flatten(internal_of, coarse.internal_begin, coarse.internal);
-    flatten(sources_of, coarse.source_begin, coarse.sources);
+    PairNumbering numbering = number_pairs(edges);
+    coarse.internal = group_by(inside, n_coarse);
+    coarse.sources = group_by(numbering.pair_of, int(numbering.pairs.size()));
+    std::vector<std::pair<int, int>> coarse_pairs = std::move(numbering.pairs);
     coarse.own.set_structure(n_coarse, coarse_pairs);
     coarse.matrix = &coarse.own;
     pairs = std::move(coarse_pairs);
@@ -159,8 +130,7 @@ RigidMultigrid::RigidMultigrid(const RigidSystem& fine,
     const std::vector<std::pair<int, int>>& level_pairs = l == 0 ? fine_pairs : level.own.pairs;
     std::vector<int> all(level.position.size());
     for (size_t b = 0; b < all.size(); ++b) all[b] = int(b);
-    level.partition = partition_bodies(std::move(all), level.position, level_pairs, kBodiesPerPart,
-                                       kMaxPartLevels);
+    level.partition = partition_bodies(std::move(all), level.position, level_pairs);
   }
   // The coarsest matrix's pattern, analysed once.
   coarsest_ = std::make_unique<Coarsest>();
@@ -218,13 +188,7 @@ bool RigidMultigrid::set_matrix(const BlockMatrix& fine, const std::vector<Vec3>
     const BlockMatrix& a = *finer.matrix;
     const int nc = coarse.own.size();
     // The clusters' points and the bodies' arms from them.
-    for (int c = 0; c < nc; ++c) {
-      Vec3 sum = Vec3::Zero();
-      for (int k = coarse.child_begin[size_t(c)]; k < coarse.child_begin[size_t(c) + 1]; ++k)
-        sum += finer.position[size_t(coarse.children[size_t(k)])];
-      coarse.position[size_t(c)] =
-          sum / double(coarse.child_begin[size_t(c) + 1] - coarse.child_begin[size_t(c)]);
-    }
+    coarse.take_mean_positions(finer);
     finer.arm.resize(finer.parent.size());
     for (size_t b = 0; b < finer.parent.size(); ++b)
       finer.arm[b] = finer.position[b] - coarse.position[size_t(finer.parent[b])];
@@ -232,12 +196,12 @@ bool RigidMultigrid::set_matrix(const BlockMatrix& fine, const std::vector<Vec3>
     parallel_chunks(size_t(nc), kParallelGrain / 8, [&](size_t begin, size_t end) {
       for (size_t c = begin; c < end; ++c) {
         Mat6 sum = Mat6::Zero();
-        for (int k = coarse.child_begin[c]; k < coarse.child_begin[c + 1]; ++k) {
-          const size_t b = size_t(coarse.children[size_t(k)]);
+        for (int k = coarse.children.begin[c]; k < coarse.children.begin[c + 1]; ++k) {
+          const size_t b = size_t(coarse.children.items[size_t(k)]);
           sum += transfer(a.diag[b].cast<double>(), finer.arm[b], finer.arm[b]);
         }
-        for (int k = coarse.internal_begin[c]; k < coarse.internal_begin[c + 1]; ++k) {
-          const size_t p = size_t(coarse.internal[size_t(k)]);
+        for (int k = coarse.internal.begin[c]; k < coarse.internal.begin[c + 1]; ++k) {
+          const size_t p = size_t(coarse.internal.items[size_t(k)]);
           const auto [i, j] = a.pairs[p];
           const Mat6 block =
               transfer(a.off(p).cast<double>(), finer.arm[size_t(i)], finer.arm[size_t(j)]);
@@ -249,13 +213,13 @@ bool RigidMultigrid::set_matrix(const BlockMatrix& fine, const std::vector<Vec3>
     parallel_chunks(m.pairs.size(), kParallelGrain / 8, [&](size_t begin, size_t end) {
       for (size_t q = begin; q < end; ++q) {
         Mat6 sum = Mat6::Zero();
-        for (int k = coarse.source_begin[q]; k < coarse.source_begin[q + 1]; ++k) {
-          const int code = coarse.sources[size_t(k)];
-          const size_t p = size_t(code / 2);
+        for (int k = coarse.sources.begin[q]; k < coarse.sources.begin[q + 1]; ++k) {
+          const size_t p = size_t(coarse.sources.items[size_t(k)]);
           const auto [i, j] = a.pairs[p];
           const Mat6 block =
               transfer(a.off(p).cast<double>(), finer.arm[size_t(i)], finer.arm[size_t(j)]);
-          if (code % 2 == 0)
+          // The finer pair's first body lies in the coarse pair's first cluster, or the other way.
+          if (finer.parent[size_t(i)] == m.pairs[q].first)
             sum += block;
           else
             sum += block.transpose();
@@ -345,8 +309,8 @@ void RigidMultigrid::cycle(size_t l, const BlockVector& rhs, BlockVector& x) {
   parallel_chunks(nc, kParallelGrain / 8, [&](size_t begin, size_t end) {
     for (size_t c = begin; c < end; ++c) {
       Vec6 sum = Vec6::Zero();
-      for (int k = coarse.child_begin[c]; k < coarse.child_begin[c + 1]; ++k) {
-        const size_t b = size_t(coarse.children[size_t(k)]);
+      for (int k = coarse.children.begin[c]; k < coarse.children.begin[c + 1]; ++k) {
+        const size_t b = size_t(coarse.children.items[size_t(k)]);
         const Vec6& r = level.residual[b];
         sum.head<3>() += r.head<3>();
         sum.tail<3>() += level.arm[b].cross(Vec3(r.head<3>())) + r.tail<3>();
