@@ -292,3 +292,51 @@ TEST(NewtonKrylov, PinnedAndTurnedHandlesAndSpringsKeepTheirDerivativesAndTheFla
         << fix_name(head_fix);
   }
 }
+
+TEST(NewtonKrylov, NoBodyTurnsFurtherThanTheBoundInAStepAndTheMinimumIsTheSame) {
+  // From rest, 150 degrees away, the unbounded first step turns bodies by radians.
+  const test::BentCylinder c = test::bent_cylinder(16, 24, 150.0, 60.0);
+  Deformer flat(c.mesh, PrismParameters{}, c.handles);
+  const std::vector<BodyState> rest = flat.body_states();
+  SolveOptions g;
+  g.tolerance = 1e-12;
+  ASSERT_TRUE(flat.solve(g).converged);
+
+  auto first_step = [&](double max_turn) {
+    NewtonKrylovOptions o;
+    o.max_turn = max_turn;
+    NewtonKrylov solver(flat.system(), o);
+    std::vector<BodyState> state = rest;
+    return solver.iterate(state, std::nan(""));
+  };
+  const NewtonKrylovStep unbounded = first_step(0.0);
+  const double bound = 0.1;
+  EXPECT_FALSE(unbounded.turn_bounded);
+  EXPECT_GT(unbounded.largest_turn, 3 * bound);
+
+  NewtonKrylovOptions o;
+  o.max_turn = bound;
+  NewtonKrylov solver(flat.system(), o);
+  std::vector<BodyState> state = rest;
+  double energy = flat.system().energy(state);
+  int steps = 0, bounded = 0;
+  for (; steps < 300; ++steps) {
+    const NewtonKrylovStep step = solver.iterate(state, energy);
+    EXPECT_LE(step.largest_turn, bound * (1 + 1e-9));
+    bounded += step.turn_bounded;
+    if (!step.decreased || step.energy_before - step.energy_after < 1e-13 * step.energy_before)
+      break;
+    energy = step.energy_after;
+  }
+  std::cout << "[ metric   ] " << steps << " steps (" << bounded << " on the bound of " << bound
+            << " rad); unbounded first step turns " << unbounded.largest_turn << " rad\n";
+  EXPECT_GT(bounded, 0);
+  EXPECT_NEAR(energy, flat.energy(), 1e-8 * flat.energy());
+  double moved = 0.0, turned = 0.0;
+  for (size_t b = 0; b < state.size(); ++b) {
+    moved = std::max(moved, (state[b].position - flat.body_states()[b].position).norm());
+    turned = std::max(turned, (state[b].rotation - flat.body_states()[b].rotation).norm());
+  }
+  EXPECT_LT(moved, 1e-5 * c.diagonal);
+  EXPECT_LT(turned, 1e-5);
+}

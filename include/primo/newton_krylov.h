@@ -29,6 +29,14 @@ struct NewtonKrylovOptions {
   // a drag in two steps of 5 and 4 iterations, where 0.05 took 7 and 5 (docs/performance.md).
   double forcing = 0.15;
   int max_cg_iterations = 40;
+  // The largest turn (radians) a body may make in one step: conjugate gradients stop where
+  // their iterate would turn a body further, on that bound (Steihaug's truncated conjugate
+  // gradients, the trust region measured by the largest turn; 0: no bound). Away from the
+  // minimum the exact Hessian can be nearly singular in a direction that the first iterations
+  // have not reached yet; the later ones then turn whole regions by radians (6 to 30 on the
+  // koala's full solve), and halving such a step leaves little of the good part of it. The
+  // bound keeps the early iterations' step instead (docs/performance.md).
+  double max_turn = 0.3;
   int max_halvings = 12;
 };
 
@@ -37,6 +45,8 @@ struct NewtonKrylovStep {
   double energy_after = 0.0;
   double step_scale = 0.0;  // accepted fraction of the step (0: none lowered the energy)
   int cg_iterations = 0;
+  double largest_turn = 0.0;  // of any body in the full step (before step halving), radians
+  bool turn_bounded = false;  // conjugate gradients stopped on NewtonKrylovOptions::max_turn
   bool exact_hessian = false;
   bool decreased = false;
 };

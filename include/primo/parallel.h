@@ -8,6 +8,7 @@
 
 #include <cstddef>
 #include <functional>
+#include <utility>
 #include <vector>
 
 namespace primo {
@@ -45,18 +46,26 @@ void parallel_chunks(size_t n, size_t grain, Body&& body) {
   });
 }
 
-// sum over the chunks of [0, n) of part(begin, end), added in chunk order.
-template <class T, class Part>
-T parallel_sum(size_t n, size_t grain, T zero, Part&& part) {
+// combine(...combine(combine(zero, part(chunk 0)), part(chunk 1))..., part(chunk K-1)): the
+// chunks' results folded in chunk order, so the result does not depend on the thread count.
+template <class T, class Part, class Combine>
+T parallel_reduce(size_t n, size_t grain, T zero, Part&& part, Combine&& combine) {
   const size_t chunks = chunk_count(n, grain);
-  if (chunks <= 1) return n > 0 ? T(zero + part(size_t(0), n)) : zero;
+  if (chunks <= 1) return n > 0 ? T(combine(zero, part(size_t(0), n))) : zero;
   std::vector<T> partial(chunks, zero);
   parallel_tasks(chunks, [&](size_t k) {
     partial[k] = part(chunk_begin(n, chunks, k), chunk_begin(n, chunks, k + 1));
   });
   T total = zero;
-  for (const T& p : partial) total = total + p;
+  for (const T& p : partial) total = combine(total, p);
   return total;
+}
+
+// sum over the chunks of [0, n) of part(begin, end), added in chunk order.
+template <class T, class Part>
+T parallel_sum(size_t n, size_t grain, T zero, Part&& part) {
+  return parallel_reduce(n, grain, zero, std::forward<Part>(part),
+                         [](const T& a, const T& b) { return T(a + b); });
 }
 
 }  // namespace primo

@@ -134,6 +134,10 @@ Command register_bench(CLI::App& app) {
                    "residual fell by this factor")
       ->check(finite_range(1e-12, 0.99))
       ->group(group);
+  drag->add_option("--krylov-max-turn", h.newton_krylov.max_turn,
+                   "Largest turn of a body in one Newton-Krylov step, radians (0: no bound)")
+      ->check(finite_range(0.0, 10.0))
+      ->group(group);
   drag->add_option("--coarse-factor-reuse", h.coarse_factor_reuse,
                    "Coarse Newton steps per numeric factorization, beyond the first")
       ->check(finite_range(0, 100000))

@@ -16,6 +16,7 @@ SolverClock SolverClock::read(const Deformer& deformer) {
     c.acceleration = h->timings().acceleration;
     c.newton_krylov = h->timings().newton_krylov;
     c.newton_krylov_steps = h->timings().newton_krylov_steps;
+    c.newton_krylov_iterations = h->timings().newton_krylov_iterations;
     c.cycles = h->timings().cycles;
     if (const GlobalSolver* g = h->coarse_solver()) c.newton = g->timings();
   } else if (const GlobalSolver* g = deformer.global_solver()) {
@@ -38,6 +39,7 @@ void Breakdown::add_solver(const SolverClock& before, const SolverClock& after) 
   acceleration += after.acceleration - before.acceleration;
   newton_krylov += after.newton_krylov - before.newton_krylov;
   newton_krylov_steps += after.newton_krylov_steps - before.newton_krylov_steps;
+  newton_krylov_iterations += after.newton_krylov_iterations - before.newton_krylov_iterations;
   assembly += after.newton.assembly - before.newton.assembly;
   factorization += after.newton.factorization - before.newton.factorization;
   solve += after.newton.solve - before.newton.solve;
@@ -48,9 +50,10 @@ void Breakdown::add_solver(const SolverClock& before, const SolverClock& after) 
 Breakdown Breakdown::per(int n) const {
   Breakdown b = *this;
   const double k = n > 0 ? 1.0 / n : 0.0;
-  for (double* x : {&b.total, &b.set_targets, &b.restrict_prolong, &b.coarse, &b.assembly,
-                    &b.factorization, &b.solve, &b.line_search, &b.sweeps, &b.acceleration,
-                    &b.newton_krylov, &b.newton_krylov_steps, &b.vertex_update, &b.factorizations})
+  for (double* x :
+       {&b.total, &b.set_targets, &b.restrict_prolong, &b.coarse, &b.assembly, &b.factorization,
+        &b.solve, &b.line_search, &b.sweeps, &b.acceleration, &b.newton_krylov,
+        &b.newton_krylov_steps, &b.newton_krylov_iterations, &b.vertex_update, &b.factorizations})
     *x *= k;
   return b;
 }
@@ -68,6 +71,7 @@ nlohmann::json Breakdown::to_json_ms() const {
           {"acceleration", 1e3 * acceleration},
           {"newton_krylov", 1e3 * newton_krylov},
           {"newton_krylov_steps", newton_krylov_steps},
+          {"newton_krylov_iterations", newton_krylov_iterations},
           {"vertex_update", 1e3 * vertex_update},
           {"other", 1e3 * other()},
           {"factorizations", factorizations}};

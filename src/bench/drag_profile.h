@@ -17,6 +17,7 @@ struct SolverClock {
   double acceleration = 0.0;
   double newton_krylov = 0.0;
   int newton_krylov_steps = 0;
+  int newton_krylov_iterations = 0;
   int cycles = 0;
   GlobalSolverTimings newton;  // the coarse level's solver (hierarchical) or the global solver
 
@@ -39,6 +40,7 @@ struct Breakdown {
   double acceleration = 0.0;  // Anderson proposals and their energy
   double newton_krylov = 0.0;        // Newton-Krylov steps, all their phases
   double newton_krylov_steps = 0.0;  // count
+  double newton_krylov_iterations = 0.0;  // count of their conjugate-gradient iterations
   double vertex_update = 0.0;
   double factorizations = 0.0;  // count (per frame after per())
 

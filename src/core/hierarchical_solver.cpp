@@ -313,6 +313,7 @@ double HierarchicalSolver::cycle(std::vector<BodyState>& fine_state, double ener
     const NewtonKrylovStep step = newton_krylov_->iterate(fine_state, energy_before);
     timings_.newton_krylov += seconds_since(t);
     ++timings_.newton_krylov_steps;
+    timings_.newton_krylov_iterations += step.cg_iterations;
     ++cycles_since_restart_;
     if (step.decreased) {
       acceleration_.reset();  // the cycles' history is no longer that of this state

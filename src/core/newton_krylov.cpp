@@ -29,9 +29,43 @@ struct NewtonKrylov::Impl {
   Impl(const RigidSystem& s, const NewtonKrylovOptions& o)
       : sys(s), options(o), hessian(s), multigrid(s, hessian.matrix().pairs, o.multigrid) {}
 
+  // The largest t <= alpha for which no body's turn |x_w + t p_w| exceeds max_turn (every
+  // |x_w| is within it already): a minimum, the same whatever the chunks.
+  double turn_limit(double alpha) const {
+    const double bound = options.max_turn;
+    return parallel_reduce(
+        x.size(), kParallelGrain, alpha,
+        [&](size_t begin, size_t end) {
+          double limit = alpha;
+          for (size_t b = begin; b < end; ++b) {
+            const Vec3 xw = x[b].tail<3>(), pw = p[b].tail<3>();
+            if ((xw + alpha * pw).squaredNorm() <= bound * bound) continue;
+            // |xw + t pw|^2 = bound^2: the root t >= 0 (the constant term is <= 0)
+            const double a = pw.squaredNorm(), half_b = xw.dot(pw);
+            const double c = std::min(0.0, xw.squaredNorm() - bound * bound);
+            limit = std::min(limit, (std::sqrt(half_b * half_b - a * c) - half_b) / a);
+          }
+          return limit;
+        },
+        [](double a, double b) { return std::min(a, b); });
+  }
+
+  double largest_turn() const {
+    return parallel_reduce(
+        x.size(), kParallelGrain, 0.0,
+        [&](size_t begin, size_t end) {
+          double largest = 0.0;
+          for (size_t b = begin; b < end; ++b) largest = std::max(largest, x[b].tail<3>().norm());
+          return largest;
+        },
+        [](double a, double b) { return std::max(a, b); });
+  }
+
   // Conjugate gradients on H x = -gradient from zero. Returns the iterations, or -1 when the
   // first direction already has non-positive curvature (H is not positive definite there).
-  int conjugate_gradients() {
+  // `bounded` tells whether they stopped on the largest turn.
+  int conjugate_gradients(bool& bounded) {
+    bounded = false;
     const BlockMatrix& h = hessian.matrix();
     const BlockVector& gradient = hessian.gradient();
     const size_t n = gradient.size();
@@ -48,7 +82,12 @@ struct NewtonKrylov::Impl {
       h.multiply(p, q);
       const double curvature = dot(p, q);
       if (!(curvature > 0.0)) return it == 0 ? -1 : it;  // keep what was found before it
-      const double alpha = rz / curvature;
+      double alpha = rz / curvature;
+      if (options.max_turn > 0.0) {
+        const double limit = turn_limit(alpha);
+        bounded = limit < alpha;
+        alpha = limit;
+      }
       parallel_chunks(n, kParallelGrain, [&](size_t begin, size_t end) {
         for (size_t b = begin; b < end; ++b) {
           x[b] += alpha * p[b];
@@ -56,6 +95,7 @@ struct NewtonKrylov::Impl {
         }
       });
       ++it;
+      if (bounded) break;
       multigrid.apply(r, z);
       const double rz_next = dot(r, z);
       if (rz_next <= stop) break;
@@ -97,9 +137,12 @@ NewtonKrylovStep NewtonKrylov::iterate(std::vector<BodyState>& state, double ene
     m.timings.setup += seconds_since(t);
     if (!ready) continue;
     t = Clock::now();
-    const int iterations = m.conjugate_gradients();
+    bool bounded = false;
+    const int iterations = m.conjugate_gradients(bounded);
     m.timings.krylov += seconds_since(t);
     if (iterations <= 0) continue;
+    step.largest_turn = m.largest_turn();
+    step.turn_bounded = bounded;
     m.timings.cg_iterations += iterations;
     step.cg_iterations += iterations;
     t = Clock::now();
