@@ -65,6 +65,17 @@ struct SessionPrisms {
 // one of them changes (the editor's undo steps share them the same way).
 using FaceFactors = std::shared_ptr<const std::vector<double>>;
 
+// Shared arrays compared by content: both null, or equal elements.
+template <class T>
+bool same_contents(const std::shared_ptr<const T>& a, const std::shared_ptr<const T>& b) {
+  if (a == b) return true;
+  if (!a || !b) return false;
+  return *a == *b;
+}
+// Per-face factors compared by content, a null array equal to one of all 1s (the editor's
+// edit states compare theirs the same way).
+bool same_factors(const FaceFactors& a, const FaceFactors& b);
+
 struct SessionState {
   std::vector<SessionHandle> handles;
   SessionPrisms prisms;

@@ -2,27 +2,13 @@
 
 #include <algorithm>
 
+#include "primo/session_state.h"
+
 namespace primo::editor {
 namespace {
 
-template <class T>
-bool same_array(const std::shared_ptr<const T>& a, const std::shared_ptr<const T>& b) {
-  if (a == b) return true;
-  if (!a || !b) return false;
-  return *a == *b;
-}
-
-bool same_factors(const FactorArray& a, const FactorArray& b) {
-  if (a == b) return true;
-  // Null means all 1: compare against an explicit array of ones.
-  const FactorArray& x = a ? a : b;
-  const FactorArray& y = a ? b : a;
-  if (!y) return std::all_of(x->begin(), x->end(), [](double v) { return v == 1.0; });
-  return *x == *y;
-}
-
 bool same_group_structure(const HandleGroup& a, const HandleGroup& b) {
-  return same_array(a.faces, b.faces) && a.mode == b.mode &&
+  return same_contents(a.faces, b.faces) && a.mode == b.mode &&
          (a.mode != HandleMode::Spring || a.stiffness == b.stiffness);
 }
 
@@ -45,7 +31,7 @@ EditState initial_edit_state(int n_faces) {
 bool operator==(const EditState& a, const EditState& b) {
   if (a.handles.size() != b.handles.size() || !(a.prisms == b.prisms) ||
       !same_factors(a.height_factor, b.height_factor) ||
-      !same_factors(a.width_factor, b.width_factor) || !same_array(a.selection, b.selection) ||
+      !same_factors(a.width_factor, b.width_factor) || !same_contents(a.selection, b.selection) ||
       !(a.orientation == b.orientation))
     return false;
   for (size_t i = 0; i < a.handles.size(); ++i) {

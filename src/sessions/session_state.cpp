@@ -3,14 +3,6 @@
 #include <algorithm>
 
 namespace primo {
-namespace {
-
-bool same_faces(const std::shared_ptr<const std::vector<int>>& a,
-                const std::shared_ptr<const std::vector<int>>& b) {
-  if (a == b) return true;
-  if (!a || !b) return false;
-  return *a == *b;
-}
 
 bool same_factors(const FaceFactors& a, const FaceFactors& b) {
   if (a == b) return true;
@@ -21,9 +13,11 @@ bool same_factors(const FaceFactors& a, const FaceFactors& b) {
   return *x == *y;
 }
 
+namespace {
+
 // What the solver is built from: the faces, how they are held, and a spring's stiffness.
 bool same_handle_structure(const SessionHandle& a, const SessionHandle& b) {
-  return same_faces(a.faces, b.faces) && a.mode == b.mode &&
+  return same_contents(a.faces, b.faces) && a.mode == b.mode &&
          (a.mode != SessionHandleMode::Spring || a.stiffness == b.stiffness);
 }
 
