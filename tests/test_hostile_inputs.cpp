@@ -36,15 +36,7 @@ namespace {
 using namespace primo;
 using Clock = std::chrono::steady_clock;
 
-template <typename F>
-std::string error_of(F f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
+using primo::test::error_of;
 
 void expect_contains(const std::string& text, const std::string& part) {
   EXPECT_NE(std::string::npos, text.find(part)) << "'" << part << "' not in: " << text;

@@ -19,14 +19,7 @@ using primo::test::RecordedSession;
 
 namespace {
 
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
+using primo::test::error_of;
 
 }  // namespace
 

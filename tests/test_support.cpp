@@ -16,6 +16,8 @@
 #include <stdexcept>
 #include <vector>
 
+#include "primo/error.h"
+
 namespace fs = std::filesystem;
 
 namespace primo::test {
@@ -117,6 +119,15 @@ nlohmann::json read_json(const std::string& path) {
 }
 
 CommandResult run_primo(const std::string& arguments) { return run_primo_within(0, arguments); }
+
+std::string error_of(const std::function<void()>& action) {
+  try {
+    action();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
 
 CommandResult run_primo_within(int seconds, const std::string& arguments) {
   const std::string dir = temp_dir();

@@ -1,6 +1,7 @@
 #pragma once
 // Helpers shared by the unit tests: paths to shipped data, temporary files, running `primo`.
 
+#include <functional>
 #include <nlohmann/json_fwd.hpp>
 #include <string>
 
@@ -44,6 +45,9 @@ CommandResult run_primo(const std::string& arguments);
 // The same, stopped after `seconds` (then exit_code is 124, as timeout(1) reports it, or -1):
 // for inputs that could make primo hang.
 CommandResult run_primo_within(int seconds, const std::string& arguments);
+
+// The message of the primo::Error that `action` throws, or "(no error)".
+std::string error_of(const std::function<void()>& action);
 
 }  // namespace primo::test
 

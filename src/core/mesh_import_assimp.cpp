@@ -38,6 +38,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "gltf_buffer_files.h"
 #include "mesh_export_gltf.h"
 #include "primo/error.h"
 #include "primo/input_files.h"
@@ -466,7 +467,10 @@ SceneSoup read_with_assimp(const std::string& path, Read read) {
 SceneSoup read_scene_file(const std::string& path) {
   // Assimp opens the file itself (a .gltf also its buffers): it must not meet a pipe or a device.
   check_input_file(path);
-  if (lowercase_extension(path) == ".dae") check_collada_counts(read_input_file(path), path);
+  const std::string ext = lowercase_extension(path);
+  if (ext == ".dae") check_collada_counts(read_input_file(path), path);
+  if (ext == ".gltf" || ext == ".glb")
+    check_gltf_buffer_files(read_gltf_json_part(path, ext == ".glb"), path);
   return read_with_assimp(path, [&](Assimp::Importer& importer, unsigned flags) {
     return importer.ReadFile(path, flags);
   });
@@ -474,8 +478,10 @@ SceneSoup read_scene_file(const std::string& path) {
 
 SceneSoup read_scene_bytes(std::string_view bytes, const std::string& path) {
   if (bytes.empty()) fail(path, "cannot read: the file is empty");
-  if (lowercase_extension(path) == ".dae") check_collada_counts(bytes, path);
-  const std::string hint = lowercase_extension(path).substr(1);
+  const std::string ext = lowercase_extension(path);
+  if (ext == ".dae") check_collada_counts(bytes, path);
+  if (ext == ".gltf" || ext == ".glb") check_gltf_buffer_files(bytes, path);
+  const std::string hint = ext.substr(1);
   return read_with_assimp(path, [&](Assimp::Importer& importer, unsigned flags) {
     return importer.ReadFileFromMemory(bytes.data(), bytes.size(), flags, hint.c_str());
   });

@@ -1,0 +1,89 @@
+#include "gltf_buffer_files.h"
+
+#include <algorithm>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "primo/error.h"
+#include "primo/input_files.h"
+
+namespace fs = std::filesystem;
+
+namespace primo::detail {
+namespace {
+
+constexpr size_t kGlbHeaderBytes = 12;          // magic, version, length
+constexpr size_t kGlbChunkHeaderBytes = 8;      // length, type
+constexpr uint32_t kGlbJsonChunk = 0x4E4F534A;  // "JSON", little-endian
+
+bool is_glb(std::string_view bytes) { return bytes.substr(0, 4) == "glTF"; }
+
+uint32_t little_endian_u32(std::string_view bytes, size_t at) {
+  uint32_t v = 0;
+  for (int k = 3; k >= 0; --k) v = (v << 8) | uint8_t(bytes[at + size_t(k)]);
+  return v;
+}
+
+// Whether a .glb's first chunk, right after its header, is its JSON.
+bool has_json_chunk(std::string_view bytes) {
+  return bytes.size() >= kGlbHeaderBytes + kGlbChunkHeaderBytes &&
+         little_endian_u32(bytes, kGlbHeaderBytes + 4) == kGlbJsonChunk;
+}
+
+// The JSON text of a .glb (as much of it as `bytes` hold; empty without a JSON chunk).
+std::string_view glb_json(std::string_view bytes) {
+  if (!has_json_chunk(bytes)) return {};
+  return bytes.substr(kGlbHeaderBytes + kGlbChunkHeaderBytes,
+                      little_endian_u32(bytes, kGlbHeaderBytes));
+}
+
+}  // namespace
+
+void check_gltf_buffer_files(std::string_view bytes, const std::string& path) {
+  const std::string_view text = is_glb(bytes) ? glb_json(bytes) : bytes;
+  const nlohmann::json json = nlohmann::json::parse(text, nullptr, false);
+  if (json.is_discarded() || !json.is_object()) return;
+  const auto buffers = json.find("buffers");
+  if (buffers == json.end() || !buffers->is_array()) return;
+  const fs::path folder = fs::path(path).parent_path();
+  for (size_t k = 0; k < buffers->size(); ++k) {
+    const nlohmann::json& buffer = (*buffers)[k];
+    if (!buffer.is_object()) continue;
+    const auto uri = buffer.find("uri");
+    if (uri == buffer.end() || !uri->is_string()) continue;
+    const std::string& name = uri->get_ref<const std::string&>();
+    if (name.rfind("data:", 0) == 0) continue;  // the bytes are in the URI itself
+    // What Assimp opens: the name as written (not decoding "%20"), appended to the asset's
+    // folder (so "/dev/zero" is looked for inside it).
+    const std::string file = folder.empty() ? name : folder.string() + "/" + name;
+    try {
+      check_input_file(file);
+    } catch (const Error& e) {
+      throw Error(path + ": buffer " + std::to_string(k) + " (" + name + "): " + e.what());
+    }
+  }
+}
+
+std::string read_gltf_json_part(const std::string& path, bool binary) {
+  if (!binary) return read_input_file(path);
+  check_input_file(path);
+  std::ifstream in(path, std::ios::binary);
+  std::string head(kGlbHeaderBytes + kGlbChunkHeaderBytes, '\0');
+  in.read(head.data(), std::streamsize(head.size()));
+  head.resize(size_t(in.gcount()));
+  if (!is_glb(head) || !has_json_chunk(head)) return head;  // Assimp will say what is wrong
+  // No more than the file holds, whatever its header says.
+  std::error_code ec;
+  const std::uintmax_t size = fs::file_size(path, ec);
+  const std::uintmax_t json_bytes = std::min<std::uintmax_t>(
+      little_endian_u32(head, kGlbHeaderBytes), !ec && size > head.size() ? size - head.size() : 0);
+  std::string json(size_t(json_bytes), '\0');
+  in.read(json.data(), std::streamsize(json.size()));
+  json.resize(size_t(in.gcount()));
+  return head + json;
+}
+
+}  // namespace primo::detail

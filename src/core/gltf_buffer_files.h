@@ -1,0 +1,22 @@
+#pragma once
+// The files a glTF asset's buffers name (in a .gltf's JSON or a .glb's JSON chunk). Assimp
+// opens them itself, past the checks every other input gets (input_files.h): a named pipe
+// there blocked the import forever, and a folder or a device gave a puzzling byte-count error.
+// So each is checked as an input first.
+
+#include <string>
+#include <string_view>
+
+namespace primo::detail {
+
+// Throws Error "<path>: buffer K (<uri>): <file>: <problem>" for the first buffer whose file
+// is missing, not a regular file, or larger than an input may be. `bytes` are the .gltf's text
+// or at least the start of a .glb (its header and JSON chunk); files are looked up beside
+// `path`. What does not parse is left to Assimp, which names the problem.
+void check_gltf_buffer_files(std::string_view bytes, const std::string& path);
+
+// The part of the file at `path` that check_gltf_buffer_files needs: the whole of a .gltf,
+// the header and JSON chunk of a .glb (`binary`; not its binary chunk, which may be large).
+std::string read_gltf_json_part(const std::string& path, bool binary);
+
+}  // namespace primo::detail
