@@ -105,6 +105,13 @@ TEST(GltfBufferFiles, EmbeddedBuffersAndUnparsableJsonAreLeftAlone) {
               detail::check_gltf_buffer_files(json.dump(), dir + "/a.gltf");
             }).find(dir + "/a.gltf: buffer 0 (missing.bin): " + dir + "/missing.bin: cannot open"),
             std::string::npos);
+  // glTF 1 keeps its buffers in an object by id.
+  const nlohmann::json v1 = {{"asset", {{"version", "1.0"}}},
+                             {"buffers", {{"geometry", {{"uri", "v1.bin"}}}}}};
+  EXPECT_NE(error_of([&] {
+              detail::check_gltf_buffer_files(v1.dump(), dir + "/v1.gltf");
+            }).find(dir + "/v1.gltf: buffer 'geometry' (v1.bin): " + dir + "/v1.bin: cannot open"),
+            std::string::npos);
   // A .glb whose header claims a JSON chunk longer than the file: only what is there is read.
   const std::string glb = glb_with_json(json.dump());
   std::string lying = glb;

@@ -44,27 +44,42 @@ std::string_view glb_json(std::string_view bytes) {
 
 void check_gltf_buffer_files(std::string_view bytes, const std::string& path) {
   const std::string_view text = is_glb(bytes) ? glb_json(bytes) : bytes;
-  const nlohmann::json json = nlohmann::json::parse(text, nullptr, false);
+  // Only the buffers are kept, and data URIs shortened: a .gltf may embed hundreds of MB.
+  using Event = nlohmann::json::parse_event_t;
+  const nlohmann::json json = nlohmann::json::parse(
+      text,
+      [](int depth, Event event, nlohmann::json& parsed) {
+        if (event == Event::key && depth == 1) return parsed == "buffers";
+        if (event == Event::value && parsed.is_string() &&
+            parsed.get_ref<const std::string&>().rfind("data:", 0) == 0)
+          parsed = "data:";
+        return true;
+      },
+      false);
   if (json.is_discarded() || !json.is_object()) return;
   const auto buffers = json.find("buffers");
-  if (buffers == json.end() || !buffers->is_array()) return;
+  if (buffers == json.end()) return;
   const fs::path folder = fs::path(path).parent_path();
-  for (size_t k = 0; k < buffers->size(); ++k) {
-    const nlohmann::json& buffer = (*buffers)[k];
-    if (!buffer.is_object()) continue;
+  // glTF 2 lists buffers in an array, glTF 1 (which Assimp also reads) in an object by id.
+  auto check = [&](const std::string& label, const nlohmann::json& buffer) {
+    if (!buffer.is_object()) return;
     const auto uri = buffer.find("uri");
-    if (uri == buffer.end() || !uri->is_string()) continue;
+    if (uri == buffer.end() || !uri->is_string()) return;
     const std::string& name = uri->get_ref<const std::string&>();
-    if (name.rfind("data:", 0) == 0) continue;  // the bytes are in the URI itself
+    if (name.rfind("data:", 0) == 0) return;  // the bytes are in the URI itself
     // What Assimp opens: the name as written (not decoding "%20"), appended to the asset's
     // folder (so "/dev/zero" is looked for inside it).
     const std::string file = folder.empty() ? name : folder.string() + "/" + name;
     try {
       check_input_file(file);
     } catch (const Error& e) {
-      throw Error(path + ": buffer " + std::to_string(k) + " (" + name + "): " + e.what());
+      throw Error(path + ": buffer " + label + " (" + name + "): " + e.what());
     }
-  }
+  };
+  if (buffers->is_array())
+    for (size_t k = 0; k < buffers->size(); ++k) check(std::to_string(k), (*buffers)[k]);
+  else if (buffers->is_object())
+    for (const auto& [id, buffer] : buffers->items()) check("'" + id + "'", buffer);
 }
 
 std::string read_gltf_json_part(const std::string& path, bool binary) {
