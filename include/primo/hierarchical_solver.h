@@ -69,10 +69,11 @@ struct HierarchicalOptions {
   // cycles (newton_krylov.h): the cycles' tail converges linearly, Newton quadratically where
   // the Hessian is well conditioned. A step that fails to lower the energy hands back to
   // cycles until the targets move. 0 (the default): cycles only. Measured with 1e-3
-  // (docs/performance.md, "Newton-Krylov steps"): at 240k faces a drag settled in 1.6-2.1 s
-  // instead of 2.3-2.5 s, but the 100k koala settled in 3.0 s instead of 2.1 s (its Newton steps
-  // converge linearly) and the 29k armadillo in 0.36 s instead of 0.29 s, and full solves
-  // gained little; so it stays an option.
+  // (docs/performance.md, "Newton-Krylov steps" and "A bound on each body's turn"): at 240k
+  // faces a drag settled in 1.6-2.0 s instead of 2.3-2.5 s and full solves from rest are
+  // faster on every mesh measured, but the 100k koala settled in 2.7-3.0 s instead of 2.0 s
+  // and the koala subdivided to 400k faces in 100 s instead of 13 s (Newton converges
+  // linearly near their drags' minima); so it stays an option.
   double newton_krylov_below = 0.0;
   NewtonKrylovOptions newton_krylov;
 };
@@ -126,7 +127,6 @@ class HierarchicalSolver {
   int bodies(int level) const;  // level 0 = fine
   const HierarchicalTimings& timings() const { return timings_; }
   const GlobalSolver* coarse_solver() const { return coarse_solver_.get(); }
-  const NewtonKrylov* newton_krylov() const { return newton_krylov_.get(); }
   // Frees the Newton-Krylov steps' matrices and vectors (about 300 MB at 240k faces) once a
   // solve has converged; the next solve that settles makes them again (about 0.25 s there).
   void release_newton_krylov() { newton_krylov_.reset(); }

@@ -51,15 +51,6 @@ struct NewtonKrylovStep {
   bool decreased = false;
 };
 
-struct NewtonKrylovTimings {
-  double assembly = 0.0;  // Hessian blocks and gradient
-  double setup = 0.0;     // multigrid projections, smoother blocks, coarsest factor
-  double krylov = 0.0;    // conjugate gradients
-  double line_search = 0.0;
-  int steps = 0;
-  int cg_iterations = 0;
-};
-
 class NewtonKrylov {
  public:
   NewtonKrylov(const RigidSystem& system, const NewtonKrylovOptions& options = {});
@@ -70,7 +61,6 @@ class NewtonKrylov {
   // One step from `state` (updated in place when the energy decreased); `energy_before` is the
   // energy of `state` (computed when NaN).
   NewtonKrylovStep iterate(std::vector<BodyState>& state, double energy_before);
-  const NewtonKrylovTimings& timings() const;
 
  private:
   struct Impl;

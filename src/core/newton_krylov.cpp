@@ -1,6 +1,5 @@
 #include "primo/newton_krylov.h"
 
-#include <chrono>
 #include <cmath>
 
 #include "primo/parallel.h"
@@ -8,14 +7,6 @@
 #include "rigid_blocks.h"
 
 namespace primo {
-namespace {
-
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point t) {
-  return std::chrono::duration<double>(Clock::now() - t).count();
-}
-
-}  // namespace
 
 struct NewtonKrylov::Impl {
   const RigidSystem& sys;
@@ -24,7 +15,6 @@ struct NewtonKrylov::Impl {
   RigidMultigrid multigrid;
   BlockVector x, r, z, p, q;
   std::vector<Vec3> position;
-  NewtonKrylovTimings timings;
 
   Impl(const RigidSystem& s, const NewtonKrylovOptions& o)
       : sys(s), options(o), hessian(s), multigrid(s, hessian.matrix().pairs, o.multigrid) {}
@@ -114,14 +104,12 @@ struct NewtonKrylov::Impl {
 NewtonKrylov::NewtonKrylov(const RigidSystem& system, const NewtonKrylovOptions& options)
     : impl_(std::make_unique<Impl>(system, options)) {}
 NewtonKrylov::~NewtonKrylov() = default;
-const NewtonKrylovTimings& NewtonKrylov::timings() const { return impl_->timings; }
 
 NewtonKrylovStep NewtonKrylov::iterate(std::vector<BodyState>& state, double energy_before) {
   Impl& m = *impl_;
   NewtonKrylovStep step;
   step.energy_before = std::isnan(energy_before) ? m.sys.energy(state) : energy_before;
   step.energy_after = step.energy_before;
-  ++m.timings.steps;
   m.position.resize(state.size());
   for (size_t b = 0; b < state.size(); ++b) m.position[b] = state[b].position;
 
@@ -129,34 +117,24 @@ NewtonKrylovStep NewtonKrylov::iterate(std::vector<BodyState>& state, double ene
   // not positive definite (assembled again then: keeping both would cost memory every step
   // for a fallback that is rare near a minimum).
   for (const bool exact : {true, false}) {
-    auto t = Clock::now();
     m.hessian.assemble(state, exact);
-    m.timings.assembly += seconds_since(t);
-    t = Clock::now();
-    const bool ready = m.multigrid.set_matrix(m.hessian.matrix(), m.position);
-    m.timings.setup += seconds_since(t);
-    if (!ready) continue;
-    t = Clock::now();
+    if (!m.multigrid.set_matrix(m.hessian.matrix(), m.position)) continue;
     bool bounded = false;
     const int iterations = m.conjugate_gradients(bounded);
-    m.timings.krylov += seconds_since(t);
     if (iterations <= 0) continue;
     step.largest_turn = m.largest_turn();
     step.turn_bounded = bounded;
-    m.timings.cg_iterations += iterations;
     step.cg_iterations += iterations;
-    t = Clock::now();
     const HalvedStep found =
         halve_until_lower(m.sys, state, step.energy_before, m.options.max_halvings,
                           [&](double lambda) { return m.hessian.moved(state, m.x, lambda); });
-    m.timings.line_search += seconds_since(t);
     if (found.lambda > 0.0) {
       step.energy_after = found.energy;
       step.step_scale = found.lambda;
       step.exact_hessian = exact;
       step.decreased = true;
+      break;
     }
-    if (step.decreased) break;
   }
   return step;
 }
