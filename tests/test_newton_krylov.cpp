@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <iostream>
 #include <random>
 
@@ -192,6 +193,83 @@ TEST(RigidMultigrid, ConjugateGradientsWithTheCycleConvergeInFewIterations) {
             << " without\n";
   EXPECT_LE(with, 30);
   EXPECT_GT(without, 5 * with);
+}
+
+// 32,000 quads: enough for the multigrid's finest sweeps to cut the cylinder across its axis
+// as well as along it (16 parts), so that its row order is not the bodies' (ring by ring).
+constexpr int kAroundForParts = 80, kRingsForParts = 400;
+
+TEST(RigidHessian, RowsInTheMultigridsOrderAreTheSameBlocksAndStepsMoveTheSameBodies) {
+  Posed p = posed_cylinder(kAroundForParts, kRingsForParts, 0);
+  const RigidSystem& sys = p.deformer.system();
+  const std::vector<BodyState>& state = p.deformer.body_states();
+  RigidHessian by_body(sys), by_row(sys, multigrid_row_order(sys));
+  by_body.assemble(state, true);
+  by_row.assemble(state, true);
+  const std::vector<int>& order = by_row.order();
+  ASSERT_EQ(order.size(), state.size());
+  // A real renumbering: not the bodies' order, every body once.
+  size_t moved_rows = 0;
+  std::vector<int> seen(order.size(), 0);
+  for (size_t r = 0; r < order.size(); ++r) {
+    moved_rows += size_t(order[r]) != r;
+    ++seen[size_t(order[r])];
+  }
+  EXPECT_GT(moved_rows, order.size() / 2);
+  EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), std::ptrdiff_t(seen.size()));
+  // H d and the gradient, row by row, are the body-numbered ones of the same body.
+  const BlockVector d = random_direction(sys, 5);
+  BlockVector d_rows(d.size());
+  for (size_t r = 0; r < d.size(); ++r) d_rows[r] = d[size_t(order[r])];
+  BlockVector hd, hd_rows;
+  by_body.matrix().multiply(d, hd);
+  by_row.matrix().multiply(d_rows, hd_rows);
+  for (size_t r = 0; r < d.size(); ++r) {
+    const size_t b = size_t(order[r]);
+    ASSERT_LT((hd_rows[r] - hd[b]).norm(), 1e-12 * (1.0 + hd[b].norm())) << "row " << r;
+    ASSERT_EQ(by_row.gradient()[r], by_body.gradient()[b]) << "row " << r;
+  }
+  const std::vector<BodyState> a = by_body.moved(state, d, 0.3),
+                               b = by_row.moved(state, d_rows, 0.3);
+  for (size_t k = 0; k < a.size(); ++k) {
+    EXPECT_EQ(a[k].position, b[k].position);
+    EXPECT_EQ(a[k].rotation, b[k].rotation);
+  }
+}
+
+TEST(RigidMultigrid, RowsInItsOwnOrderGiveTheSameCycle) {
+  // The row order only renumbers: the sweeps visit the same bodies in the same order, so a
+  // cycle is the same up to the rounding of sums taken in another order.
+  Posed p = posed_cylinder(kAroundForParts, kRingsForParts, 0);
+  const RigidSystem& sys = p.deformer.system();
+  const std::vector<BodyState>& state = p.deformer.body_states();
+  MultigridOptions options;
+  options.coarsest_max_bodies = 300;
+  RigidHessian by_body(sys), by_row(sys, multigrid_row_order(sys));
+  by_body.assemble(state, false);  // at rest with the handles moved: Gauss-Newton's is definite
+  by_row.assemble(state, false);
+  const std::vector<int>& order = by_row.order();
+  std::vector<Vec3> position, position_rows;
+  for (const BodyState& s : state) position.push_back(s.position);
+  for (int b : order) position_rows.push_back(state[size_t(b)].position);
+  RigidMultigrid plain(sys, by_body.matrix().pairs, options);
+  RigidMultigrid ordered(sys, by_row.matrix().pairs, options, order);
+  ASSERT_TRUE(plain.set_matrix(by_body.matrix(), position));
+  ASSERT_TRUE(ordered.set_matrix(by_row.matrix(), position_rows));
+  ASSERT_EQ(plain.levels(), ordered.levels());
+  EXPECT_GE(plain.levels(), 4);
+  const BlockVector r = random_direction(sys, 9);
+  BlockVector r_rows(r.size()), z, z_rows;
+  for (size_t k = 0; k < r.size(); ++k) r_rows[k] = r[size_t(order[k])];
+  plain.apply(r, z);
+  ordered.apply(r_rows, z_rows);
+  double largest = 0.0, difference = 0.0;
+  for (size_t k = 0; k < r.size(); ++k) {
+    largest = std::max(largest, z[size_t(order[k])].norm());
+    difference = std::max(difference, (z_rows[k] - z[size_t(order[k])]).norm());
+  }
+  EXPECT_GT(largest, 0.0);
+  EXPECT_LT(difference, 1e-4 * largest);  // blocks in single precision
 }
 
 TEST(NewtonKrylov, StepsReachTheCyclesMinimumInFewerIterationsAndGlobalNewtonKeepsIt) {

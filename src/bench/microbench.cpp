@@ -9,6 +9,9 @@
 //    two-thread planned sweep;
 //  - DragPrediction / SystemEnergy: a drag frame's prediction and the energy pass that
 //    checks it (drag_predictor.h);
+//  - HessianProduct / MultigridCycle: the two kernels of a Newton-Krylov step's conjugate
+//    gradients (newton_krylov.h): a product with the exact Hessian's 6x6 blocks, and one
+//    application of the rigid-cluster multigrid preconditioner (rigid_multigrid.h);
 //  - GlobalAssembly: assembling the global Gauss-Newton system (global_solver.h, Sect. 4.2),
 //    timed by the solver's own assembly clock so that the factorization that follows is not
 //    counted (10 iterations each, which take a few seconds in all because of it).
@@ -34,6 +37,8 @@
 #include "primo/horn.h"
 #include "primo/local_solver.h"
 #include "primo/mesh_generators.h"
+#include "primo/rigid_hessian.h"
+#include "primo/rigid_multigrid.h"
 
 namespace {
 
@@ -177,6 +182,54 @@ void SystemEnergy(benchmark::State& run) {
   run.SetItemsProcessed(run.iterations() * limb.deformer.system().n_bodies());
 }
 BENCHMARK(SystemEnergy)->Arg(240)->Arg(4800)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// The exact Hessian at the limb's state with its multigrid preconditioner set up, shared by the
+// Newton-Krylov kernels of one size.
+struct LimbHessian {
+  RigidHessian hessian;
+  RigidMultigrid multigrid;
+  BlockVector residual;  // the negative gradient, what conjugate gradients start from
+
+  explicit LimbHessian(const Limb& limb)
+      : hessian(limb.deformer.system(), multigrid_row_order(limb.deformer.system())),
+        multigrid(limb.deformer.system(), hessian.matrix().pairs, {}, hessian.order()) {
+    hessian.assemble(limb.state, /*second_order=*/true);
+    std::vector<Vec3> position;
+    for (int body : hessian.order()) position.push_back(limb.state[size_t(body)].position);
+    multigrid.set_matrix(hessian.matrix(), position);
+    for (const Vec6& g : hessian.gradient()) residual.push_back(-g);
+  }
+  static LimbHessian& of(int bands) {
+    static std::vector<std::pair<int, std::unique_ptr<LimbHessian>>> made;
+    for (auto& [b, h] : made)
+      if (b == bands) return *h;
+    made.emplace_back(bands, std::make_unique<LimbHessian>(Limb::of(bands)));
+    return *made.back().second;
+  }
+};
+
+void HessianProduct(benchmark::State& run) {
+  const LimbHessian& h = LimbHessian::of(int(run.range(0)));
+  BlockVector y;
+  for (auto _ : run) {
+    h.hessian.matrix().multiply(h.residual, y);
+    benchmark::ClobberMemory();
+  }
+  run.SetItemsProcessed(run.iterations() * h.hessian.matrix().size());  // rows per second
+}
+BENCHMARK(HessianProduct)->Arg(60)->Arg(4800)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void MultigridCycle(benchmark::State& run) {
+  LimbHessian& h = LimbHessian::of(int(run.range(0)));
+  BlockVector z;
+  for (auto _ : run) {
+    h.multigrid.apply(h.residual, z);
+    benchmark::ClobberMemory();
+  }
+  run.SetItemsProcessed(run.iterations() * h.hessian.matrix().size());
+  run.counters["levels"] = double(h.multigrid.levels());
+}
+BENCHMARK(MultigridCycle)->Arg(60)->Arg(4800)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 // factorize_at assembles and then factorizes; only the assembly is reported, read from the
 // solver's assembly clock (manual time), so the figure is the assembly's alone. The numeric

@@ -17,7 +17,10 @@ struct NewtonKrylov::Impl {
   std::vector<Vec3> position;
 
   Impl(const RigidSystem& s, const NewtonKrylovOptions& o)
-      : sys(s), options(o), hessian(s), multigrid(s, hessian.matrix().pairs, o.multigrid) {}
+      : sys(s),
+        options(o),
+        hessian(s, multigrid_row_order(s)),
+        multigrid(s, hessian.matrix().pairs, o.multigrid, hessian.order()) {}
 
   // The largest t <= alpha for which no body's turn |x_w + t p_w| exceeds max_turn (every
   // |x_w| is within it already): a minimum, the same whatever the chunks.
@@ -111,7 +114,8 @@ NewtonKrylovStep NewtonKrylov::iterate(std::vector<BodyState>& state, double ene
   step.energy_before = std::isnan(energy_before) ? m.sys.energy(state) : energy_before;
   step.energy_after = step.energy_before;
   m.position.resize(state.size());
-  for (size_t b = 0; b < state.size(); ++b) m.position[b] = state[b].position;
+  for (size_t r = 0; r < state.size(); ++r)
+    m.position[r] = state[size_t(m.hessian.order()[r])].position;
 
   // The exact Hessian first; Gauss-Newton's when it or a block the preconditioner inverts is
   // not positive definite (assembled again then: keeping both would cost memory every step

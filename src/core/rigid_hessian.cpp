@@ -11,12 +11,26 @@ constexpr size_t kBodyGrain = kParallelGrain / 8;  // a body's blocks cost a few
 
 }  // namespace
 
-RigidHessian::RigidHessian(const RigidSystem& system) : system_(system) {
+RigidHessian::RigidHessian(const RigidSystem& system, std::vector<int> order)
+    : system_(system), order_(std::move(order)) {
   const int n = system.n_bodies();
+  if (order_.empty()) {
+    order_.resize(size_t(n));
+    for (int b = 0; b < n; ++b) order_[size_t(b)] = b;
+  }
+  row_of_.assign(size_t(n), -1);
+  for (int r = 0; r < n; ++r) row_of_[size_t(order_[size_t(r)])] = r;
   mask_.resize(size_t(n));
-  for (int b = 0; b < n; ++b) mask_[size_t(b)] = active_mask(system.bodies[size_t(b)].kind);
+  for (int r = 0; r < n; ++r)
+    mask_[size_t(r)] = active_mask(system.bodies[size_t(order_[size_t(r)])].kind);
   // One block per pair of coupled bodies that both move, numbered in coupling order.
-  PairNumbering numbering = number_pairs(moving_coupling_edges(system));
+  std::vector<std::pair<int, int>> edges = moving_coupling_edges(system);
+  for (auto& [a, b] : edges)
+    if (a >= 0) {
+      a = row_of_[size_t(a)];
+      b = row_of_[size_t(b)];
+    }
+  PairNumbering numbering = number_pairs(edges);
   pair_couplings_ = group_by(numbering.pair_of, int(numbering.pairs.size()));
   matrix_.set_structure(n, std::move(numbering.pairs));
   gradient_.assign(size_t(n), Vec6::Zero());
@@ -25,11 +39,13 @@ RigidHessian::RigidHessian(const RigidSystem& system) : system_(system) {
 void RigidHessian::assemble(const std::vector<BodyState>& state, bool second_order) {
   const RigidSystem& sys = system_;
   parallel_chunks(size_t(sys.n_bodies()), kBodyGrain, [&](size_t begin, size_t end) {
-    for (size_t b = begin; b < end; ++b) {
+    for (size_t row = begin; row < end; ++row) {
+      const size_t b = size_t(order_[row]);
       Mat6 h = Mat6::Zero();
       Vec6 g = Vec6::Zero();
       Mat3 s = Mat3::Zero();
-      if (mask_[b] != 0) {
+      const int mask = mask_[row];
+      if (mask != 0) {
         for (int k = sys.coupling_begin[b]; k < sys.coupling_begin[b + 1]; ++k) {
           const auto [ci, side] = sys.body_couplings[size_t(k)];
           const RigidSystem::Coupling& c = sys.couplings[size_t(ci)];
@@ -50,15 +66,15 @@ void RigidHessian::assemble(const std::vector<BodyState>& state, bool second_ord
         }
       }
       for (int d = 0; d < 6; ++d)
-        if (!(mask_[b] & (1 << d))) {
+        if (!(mask & (1 << d))) {
           h.row(d).setZero();
           h.col(d).setZero();
           h(d, d) = 1.0;
           g[d] = 0.0;
         }
-      if (second_order && (mask_[b] & 0x38)) h.block<3, 3>(3, 3) += s;
-      matrix_.diag[b] = h.cast<BlockScalar>();
-      gradient_[b] = g;
+      if (second_order && (mask & 0x38)) h.block<3, 3>(3, 3) += s;
+      matrix_.diag[row] = h.cast<BlockScalar>();
+      gradient_[row] = g;
     }
   });
   parallel_chunks(matrix_.pairs.size(), kBodyGrain, [&](size_t begin, size_t end) {
@@ -72,7 +88,7 @@ void RigidHessian::assemble(const std::vector<BodyState>& state, bool second_ord
                           [&](const Vec3& y0, const Vec3& y1, const Vec3&, double w, bool point) {
                             FeatureBlocks::add_cross(block, y0, y1, w, point);
                           });
-        if (c.body[0] == first)
+        if (row_of_[size_t(c.body[0])] == first)
           h01 += block;
         else
           h01 += block.transpose();
@@ -91,10 +107,12 @@ std::vector<BodyState> RigidHessian::moved(const std::vector<BodyState>& state,
                                            const BlockVector& step, double lambda) const {
   std::vector<BodyState> next = state;
   parallel_chunks(state.size(), kParallelGrain, [&](size_t begin, size_t end) {
-    for (size_t b = begin; b < end; ++b) {
-      const Vec6 d = lambda * step[b];
-      if (mask_[b] & 0x38) next[b].rotation = rotation_from_vector(d.tail<3>()) * state[b].rotation;
-      if (mask_[b] & 0x07) next[b].position = state[b].position + d.head<3>();
+    for (size_t row = begin; row < end; ++row) {
+      const size_t b = size_t(order_[row]);
+      const Vec6 d = lambda * step[row];
+      if (mask_[row] & 0x38)
+        next[b].rotation = rotation_from_vector(d.tail<3>()) * state[b].rotation;
+      if (mask_[row] & 0x07) next[b].position = state[b].position + d.head<3>();
     }
   });
   return next;
