@@ -306,6 +306,7 @@ TEST(HierarchicalSolver, VCycleAndWCycleReachTheSameMinimum) {
   for (int cycles : {1, 2}) {
     for (int reuse : {0, 8}) {
       SolveOptions o = hierarchical(1500, 1e-9, 150);
+      o.hierarchical.newton_krylov_above = 0.0;  // every iteration a cycle
       o.hierarchical.intermediate_cycles = cycles;
       o.hierarchical.coarse_factor_reuse = reuse;
       Deformer d(s.mesh, PrismParameters{}, s.handles);
@@ -368,6 +369,7 @@ TEST(HierarchicalSolver, AccelerationCutsCyclesAndKeepsTheMinimum) {
   std::vector<Vec3> result[2];
   for (int accelerated : {0, 1}) {
     SolveOptions o = hierarchical(3000, 1e-9, 300);
+    o.hierarchical.newton_krylov_above = 0.0;  // cycles to the end
     o.hierarchical.acceleration_history = accelerated ? 5 : 0;
     Deformer d(s.mesh, PrismParameters{}, s.handles);
     const SolveReport r = d.solve(o);
@@ -402,6 +404,7 @@ TEST(HierarchicalSolver, CyclesGivenTheEntryEnergyReturnTheTrueEnergy) {
   const RigidSystem& sys = d.system();
   HierarchicalOptions options;
   options.hierarchy.coarsest_max_bodies = 300;
+  options.newton_krylov_above = 0.0;  // cycles, not Newton-Krylov steps, from rest
   HierarchicalSolver told(sys, options), untold(sys, options);
   std::vector<BodyState> a = d.body_states(), b = a;
   double energy = sys.energy(a);
@@ -489,6 +492,7 @@ TEST(HierarchicalSolver, ShowsTheCoarseCorrectionOncePerCycleWithoutChangingTheR
   Deformer plain(s.mesh, PrismParameters{}, s.handles);
   SolveOptions o = hierarchical(6, 0.0);
   o.path.enabled = false;
+  o.hierarchical.newton_krylov_above = 0.0;  // a cycle per iteration
   plain.solve(o);
 
   Deformer shown(s.mesh, PrismParameters{}, s.handles);

@@ -289,6 +289,7 @@ TEST(NewtonKrylov, StepsReachTheCyclesMinimumInFewerIterationsAndGlobalNewtonKee
     o.max_iterations = 2000;
     o.hierarchical.hierarchy.coarsest_max_bodies = 150;
     o.hierarchical.newton_krylov_below = newton_krylov_below;
+    o.hierarchical.newton_krylov_above = 0.0;  // the steps near the minimum only
     const SolveReport r = d.solve(o);
     EXPECT_TRUE(r.converged);
     return Run{d.vertex_positions(), d.face_motions(), r.energy, r.iterations,
@@ -311,6 +312,64 @@ TEST(NewtonKrylov, StepsReachTheCyclesMinimumInFewerIterationsAndGlobalNewtonKee
   const SolveReport rg = polish.solve(g);
   EXPECT_NEAR(rg.energy, with.energy, 1e-9 * with.energy);
   EXPECT_LT(max_distance(polish.vertex_positions(), with.vertices), 1e-5 * c.diagonal);
+}
+
+TEST(NewtonKrylov, ASolveFromAfarTakesStepsAndTheSettleOfADragKeepsTheCycles) {
+  // HierarchicalOptions::newton_krylov_above (on by default): a solve that starts far from
+  // the minimum (here from rest, the top bent 90 degrees) is Newton-Krylov steps once the
+  // targets stay put; a drag that followed the hand settles with cycles. All three end at
+  // the same minimum.
+  const test::BentCylinder c = test::bent_cylinder(40, 60, 90.0, 30.0);
+  SolveOptions o;
+  o.method = SolveMethod::Hierarchical;
+  o.tolerance = 1e-10;
+  o.max_iterations = 2000;
+  o.hierarchical.hierarchy.coarsest_max_bodies = 150;
+  struct Run {
+    SolveReport report;
+    int newton_steps;
+    std::vector<Vec3> vertices;
+  };
+  auto from_rest = [&](double above) {
+    SolveOptions options = o;
+    options.hierarchical.newton_krylov_above = above;
+    Deformer d(c.mesh, PrismParameters{}, c.handles);
+    const SolveReport r = d.solve(options);
+    return Run{r, d.hierarchical_solver()->timings().newton_krylov_steps, d.vertex_positions()};
+  };
+  const Run steps = from_rest(HierarchicalOptions{}.newton_krylov_above), cycles = from_rest(0.0);
+  // The drag: 30 frames of one iteration each, then the settle.
+  Deformer dragged(c.mesh, PrismParameters{}, test::bent_cylinder(40, 60, 0.0, 0.0).handles);
+  SolveOptions frame = o;
+  frame.max_iterations = 1;
+  frame.tolerance = 0.0;
+  constexpr int kFrames = 30;
+  for (int k = 1; k <= kFrames; ++k) {
+    const double s = double(k) / kFrames;
+    dragged.set_handle_transform(
+        1, test::bent_cylinder(40, 60, 90.0 * s, 30.0 * s).handles[1].transform);
+    dragged.solve(frame);
+  }
+  const int steps_in_drag = dragged.hierarchical_solver()->timings().newton_krylov_steps;
+  const SolveReport settle = dragged.solve(o);
+  const int settle_steps =
+      dragged.hierarchical_solver()->timings().newton_krylov_steps - steps_in_drag;
+  std::cout << "[ metric   ] from rest: " << steps.report.iterations << " iterations ("
+            << steps.newton_steps << " Newton-Krylov steps) against " << cycles.report.iterations
+            << " cycles; settle after a " << kFrames << "-frame drag: " << settle.iterations
+            << " iterations, " << settle_steps << " steps\n";
+  EXPECT_TRUE(steps.report.converged);
+  EXPECT_TRUE(cycles.report.converged);
+  EXPECT_TRUE(settle.converged);
+  EXPECT_GT(steps.newton_steps, 0);
+  EXPECT_EQ(cycles.newton_steps, 0);
+  EXPECT_LT(2 * steps.report.iterations, cycles.report.iterations);
+  EXPECT_EQ(steps_in_drag, 0);
+  EXPECT_EQ(settle_steps, 0);
+  EXPECT_NEAR(steps.report.energy, cycles.report.energy, 1e-7 * cycles.report.energy);
+  EXPECT_NEAR(settle.energy, cycles.report.energy, 1e-7 * cycles.report.energy);
+  EXPECT_LT(max_distance(steps.vertices, cycles.vertices), 1e-4 * c.diagonal);
+  EXPECT_LT(max_distance(dragged.vertex_positions(), cycles.vertices), 1e-4 * c.diagonal);
 }
 
 TEST(NewtonKrylov, AStepThatCannotDescendHandsBackToCycles) {

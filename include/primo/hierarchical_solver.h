@@ -17,6 +17,7 @@
 #include <functional>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "primo/anderson_acceleration.h"
@@ -75,6 +76,17 @@ struct HierarchicalOptions {
   // and the koala subdivided to 400k faces in 100 s instead of 13 s (Newton converges
   // linearly near their drags' minima); so it stays an option.
   double newton_krylov_below = 0.0;
+  // When the targets have stayed put for a few cycles and the last of them still lowered the
+  // energy by more than this fraction, the state is far from the minimum (a jump or a solve
+  // from rest, not a drag that followed the hand): the rest of that solve is Newton-Krylov
+  // steps. There the cycles spend most of their iterations (the 240k drag benchmark's solve
+  // from rest: 80 cycles), where steps of a Newton method take 9 to 15; full solves took
+  // 0.19 instead of 0.28 s (elephant), 0.73 instead of 0.89 s (armadillo), 3.8 instead of
+  // 5.7 s (koala) and about 5.5 instead of 9.5 s (240k faces) (docs/performance.md). After a
+  // drag the first settling cycles lower the energy by 1e-5 to 5e-3 of it, after a jump by
+  // 2e-2 to 0.6. 0: cycles there too (the editor: a step is not cancellable, and a settling
+  // batch of steps would keep a new drag waiting for seconds at 240k faces).
+  double newton_krylov_above = 1e-2;
   NewtonKrylovOptions newton_krylov;
 };
 
@@ -118,6 +130,7 @@ class HierarchicalSolver {
     krylov_failed_ = false;
     last_decrease_ = 1.0;
     last_was_newton_ = false;
+    settle_from_afar_.reset();
   }
 
   int levels() const { return int(levels_.size()) + 1; }  // including the fine level
@@ -159,6 +172,9 @@ class HierarchicalSolver {
   bool krylov_failed_ = false;    // a step did not lower the energy since the targets moved
   double last_decrease_ = 1.0;    // relative energy decrease of the last iteration
   bool last_was_newton_ = false;  // the last iteration was a Newton-Krylov step
+  // Whether this settle (since the targets last moved) started far from the minimum
+  // (HierarchicalOptions::newton_krylov_above); unknown until the targets have stayed put.
+  std::optional<bool> settle_from_afar_;
   HierarchicalTimings timings_;
 };
 

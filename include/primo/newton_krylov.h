@@ -1,8 +1,9 @@
 #pragma once
 // Newton steps on all bodies at once, each solved inexactly by conjugate gradients
-// preconditioned by the rigid-cluster multigrid cycle (rigid_multigrid.h): the fast tail of a
-// solve. Near a minimum the hierarchical cycles remove a fixed fraction of the error per
-// cycle (a few percent at 240k faces), where Newton steps converge quadratically; a direct
+// preconditioned by the rigid-cluster multigrid cycle (rigid_multigrid.h): a solve from afar
+// (HierarchicalOptions::newton_krylov_above) and, as an option, the tail of a settle. The
+// hierarchical cycles remove a fixed fraction of the error per cycle (a few percent at 240k
+// faces), where Newton steps converge quadratically near a minimum; a direct
 // factorization of the fine Newton system, which global matching uses, costs seconds and
 // gigabytes at that size, and conjugate gradients need only products with the Hessian's
 // blocks and a cheap cycle.

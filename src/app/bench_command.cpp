@@ -129,6 +129,11 @@ Command register_bench(CLI::App& app) {
                    "lowers the energy by less than this fraction (0: cycles only)")
       ->check(finite_range(0.0, 1.0))
       ->group(group);
+  drag->add_option("--newton-krylov-above", h.newton_krylov_above,
+                   "Newton-Krylov steps for the whole settle when, once the targets stay put, "
+                   "a cycle still lowers the energy by more than this fraction (0: never)")
+      ->check(finite_range(0.0, 1.0))
+      ->group(group);
   drag->add_option("--krylov-forcing", h.newton_krylov.forcing,
                    "Conjugate gradients of a Newton-Krylov step stop when the preconditioned "
                    "residual fell by this factor")

@@ -376,6 +376,7 @@ int run_drag_bench(const DragBenchOptions& args) {
       args.hierarchical.intermediate_relaxation != defaults.intermediate_relaxation ||
       args.hierarchical.acceleration_history != defaults.acceleration_history ||
       args.hierarchical.newton_krylov_below != defaults.newton_krylov_below ||
+      args.hierarchical.newton_krylov_above != defaults.newton_krylov_above ||
       args.hierarchical.newton_krylov.forcing != defaults.newton_krylov.forcing ||
       args.hierarchical.newton_krylov.max_turn != defaults.newton_krylov.max_turn;
   const nlohmann::json settings = {
@@ -391,6 +392,7 @@ int run_drag_bench(const DragBenchOptions& args) {
       {"intermediate_relaxation", args.hierarchical.intermediate_relaxation},
       {"acceleration_history", args.hierarchical.acceleration_history},
       {"newton_krylov_below", args.hierarchical.newton_krylov_below},
+      {"newton_krylov_above", args.hierarchical.newton_krylov_above},
       {"krylov_forcing", args.hierarchical.newton_krylov.forcing},
       {"krylov_max_turn", args.hierarchical.newton_krylov.max_turn},
       {"core_defaults", !tuned}};

@@ -306,7 +306,13 @@ double HierarchicalSolver::cycle(std::vector<BodyState>& fine_state, double ener
   // next iteration has to do is confirm it, and a cycle does so at a tenth of a step's cost.
   const bool confirming = last_was_newton_ && last_decrease_ < kConfirmBelow;
   last_was_newton_ = false;
-  if (settling && !krylov_failed_ && !confirming && last_decrease_ < options_.newton_krylov_below) {
+  if (settling && !settle_from_afar_)
+    settle_from_afar_ =
+        options_.newton_krylov_above > 0.0 && last_decrease_ > options_.newton_krylov_above;
+  const bool newton =
+      settling && !krylov_failed_ && !confirming &&
+      (settle_from_afar_.value_or(false) || last_decrease_ < options_.newton_krylov_below);
+  if (newton) {
     const auto t = Clock::now();
     if (!newton_krylov_)
       newton_krylov_ = std::make_unique<NewtonKrylov>(fine_, options_.newton_krylov);

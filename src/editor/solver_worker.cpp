@@ -307,6 +307,10 @@ void SolverWorker::step() {
   SolveOptions options;
   options.method = interactive_solve_method(problem_->spec.method, problem_->topology->n_faces);
   options.tolerance = problem_->spec.tolerance;
+  // Cycles after a jump too, not Newton-Krylov steps (HierarchicalOptions::newton_krylov_above):
+  // a step cannot be interrupted, and a settling batch of them would keep a new drag waiting
+  // for seconds on a 240k-face mesh, where a cycle takes about 0.1 s.
+  options.hierarchical.newton_krylov_above = 0.0;
   const int done = status().iterations;
   const bool dragging =
       std::chrono::duration<double>(Clock::now() - last_request_).count() < kDragPauseSeconds;
