@@ -39,7 +39,7 @@ class RigidHessian {
   const RigidSystem& system_;
   std::vector<int> order_, row_of_;               // row -> body, body -> row
   std::vector<int> mask_;                         // active_mask of each row's body
-  Groups pair_couplings_;                         // each pair's couplings
+  std::vector<int> coupling_pair_;                // each coupling's pair (-1: none)
   BlockMatrix matrix_;
   BlockVector gradient_;
 };

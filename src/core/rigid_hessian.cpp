@@ -1,5 +1,7 @@
 #include "primo/rigid_hessian.h"
 
+#include <algorithm>
+
 #include "primo/global_solver.h"
 #include "primo/parallel.h"
 #include "rigid_blocks.h"
@@ -31,24 +33,32 @@ RigidHessian::RigidHessian(const RigidSystem& system, std::vector<int> order)
       b = row_of_[size_t(b)];
     }
   PairNumbering numbering = number_pairs(edges);
-  pair_couplings_ = group_by(numbering.pair_of, int(numbering.pairs.size()));
+  coupling_pair_ = std::move(numbering.pair_of);
   matrix_.set_structure(n, std::move(numbering.pairs));
   gradient_.assign(size_t(n), Vec6::Zero());
 }
 
 void RigidHessian::assemble(const std::vector<BodyState>& state, bool second_order) {
   const RigidSystem& sys = system_;
+  // One pass, row by row: a row's couplings give its diagonal block and gradient, and, for
+  // the pairs whose first row it is, their off-diagonal blocks from the same residuals (the
+  // modes turned into world orientation once per coupling side, not once more per pair).
   parallel_chunks(size_t(sys.n_bodies()), kBodyGrain, [&](size_t begin, size_t end) {
+    std::vector<std::pair<int, Mat6>> crosses;  // this row's pairs' blocks
     for (size_t row = begin; row < end; ++row) {
       const size_t b = size_t(order_[row]);
       Mat6 h = Mat6::Zero();
       Vec6 g = Vec6::Zero();
       Mat3 s = Mat3::Zero();
+      crosses.clear();
       const int mask = mask_[row];
       if (mask != 0) {
         for (int k = sys.coupling_begin[b]; k < sys.coupling_begin[b + 1]; ++k) {
           const auto [ci, side] = sys.body_couplings[size_t(k)];
           const RigidSystem::Coupling& c = sys.couplings[size_t(ci)];
+          const int pair = coupling_pair_[size_t(ci)];
+          const bool first = pair >= 0 && matrix_.pairs[size_t(pair)].first == int(row);
+          Mat6 cross = Mat6::Zero();  // rows: side 0's dofs
           for_each_residual(c, state[size_t(c.body[0])], state[size_t(c.body[1])],
                             [&, side = side](const Vec3& y0, const Vec3& y1, const Vec3& r,
                                              double w, bool point) {
@@ -56,7 +66,16 @@ void RigidHessian::assemble(const std::vector<BodyState>& state, bool second_ord
                                 FeatureBlocks::add_own(h, g, s, y0, r, w, point);
                               else
                                 FeatureBlocks::add_own(h, g, s, y1, -r, w, point);
+                              if (first) FeatureBlocks::add_cross(cross, y0, y1, w, point);
                             });
+          if (!first) continue;
+          if (side != 0) cross.transposeInPlace();  // rows: this row's dofs
+          auto known = std::find_if(crosses.begin(), crosses.end(),
+                                    [&](const auto& e) { return e.first == pair; });
+          if (known == crosses.end())
+            crosses.emplace_back(pair, cross);
+          else
+            known->second += cross;
         }
         for (int k = sys.spring_begin[b]; k < sys.spring_begin[b + 1]; ++k) {
           const RigidSystem::Spring& spring = sys.springs[size_t(sys.body_springs[size_t(k)])];
@@ -75,30 +94,14 @@ void RigidHessian::assemble(const std::vector<BodyState>& state, bool second_ord
       if (second_order && (mask & 0x38)) h.block<3, 3>(3, 3) += s;
       matrix_.diag[row] = h.cast<BlockScalar>();
       gradient_[row] = g;
-    }
-  });
-  parallel_chunks(matrix_.pairs.size(), kBodyGrain, [&](size_t begin, size_t end) {
-    for (size_t p = begin; p < end; ++p) {
-      Mat6 h01 = Mat6::Zero();
-      const int first = matrix_.pairs[p].first;
-      for (int k = pair_couplings_.begin[p]; k < pair_couplings_.begin[p + 1]; ++k) {
-        const RigidSystem::Coupling& c = sys.couplings[size_t(pair_couplings_.items[size_t(k)])];
-        Mat6 block = Mat6::Zero();
-        for_each_residual(c, state[size_t(c.body[0])], state[size_t(c.body[1])],
-                          [&](const Vec3& y0, const Vec3& y1, const Vec3&, double w, bool point) {
-                            FeatureBlocks::add_cross(block, y0, y1, w, point);
-                          });
-        if (row_of_[size_t(c.body[0])] == first)
-          h01 += block;
-        else
-          h01 += block.transpose();
+      for (auto& [pair, h01] : crosses) {
+        const int m1 = mask_[size_t(matrix_.pairs[size_t(pair)].second)];
+        for (int d = 0; d < 6; ++d) {
+          if (!(mask & (1 << d))) h01.row(d).setZero();
+          if (!(m1 & (1 << d))) h01.col(d).setZero();
+        }
+        matrix_.set_off(size_t(pair), h01.cast<BlockScalar>());
       }
-      const int m0 = mask_[size_t(first)], m1 = mask_[size_t(matrix_.pairs[p].second)];
-      for (int d = 0; d < 6; ++d) {
-        if (!(m0 & (1 << d))) h01.row(d).setZero();
-        if (!(m1 & (1 << d))) h01.col(d).setZero();
-      }
-      matrix_.set_off(p, h01.cast<BlockScalar>());
     }
   });
 }
