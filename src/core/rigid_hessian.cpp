@@ -11,6 +11,69 @@ namespace {
 
 constexpr size_t kBodyGrain = kParallelGrain / 8;  // a body's blocks cost a few thousand flops
 
+// A body's own blocks (FeatureBlocks::add_own summed over its residuals) from sums that each
+// residual adds to: every term of them is linear in w, w y, w r, w y y^T or w r y^T. A 6x6
+// block per residual cost more than the residuals' rotations.
+struct OwnSums {
+  double point_weight = 0.0;
+  Vec3 point_arm = Vec3::Zero();   // sum of w y over the points
+  Vec3 point_pull = Vec3::Zero();  // sum of w r over the points
+  Vec3 torque = Vec3::Zero();      // sum of w y x r
+  Mat3 yy = Mat3::Zero();          // sum of w y y^T
+  Mat3 ry = Mat3::Zero();          // sum of w r y^T
+
+  void add(const Vec3& y, const Vec3& r, double w, bool point) {
+    if (point) {
+      point_weight += w;
+      point_arm += w * y;
+      point_pull += w * r;
+    }
+    const Vec3 wy = w * y;
+    torque += wy.cross(r);
+    yy.noalias() += wy * y.transpose();
+    ry.noalias() += r * wy.transpose();
+  }
+  // h = [[W I, -[a]x], [[a]x, tr(YY) I - YY]], g = (sum w r, sum w y x r), and the
+  // second-order term s = (RY + RY^T) / 2 - tr(RY) I.
+  void blocks(Mat6& h, Vec6& g, Mat3& s) const {
+    h.setZero();
+    h.block<3, 3>(0, 0).diagonal().setConstant(point_weight);
+    const Mat3 arm = cross_matrix(point_arm);
+    h.block<3, 3>(0, 3) = -arm;
+    h.block<3, 3>(3, 0) = arm;
+    h.block<3, 3>(3, 3) = -yy;
+    h.block<3, 3>(3, 3).diagonal().array() += yy.trace();
+    g << point_pull, torque;
+    s = 0.5 * (ry + ry.transpose());
+    s.diagonal().array() -= ry.trace();
+  }
+};
+
+// A pair's block (FeatureBlocks::add_cross summed): rows side 0's dofs, columns side 1's.
+struct CrossSums {
+  double point_weight = 0.0;
+  Vec3 arm0 = Vec3::Zero(), arm1 = Vec3::Zero();  // sums of w y_0, w y_1 over the points
+  Mat3 y1y0 = Mat3::Zero();                       // sum of w y_1 y_0^T
+
+  void add(const Vec3& y0, const Vec3& y1, double w, bool point) {
+    if (point) {
+      point_weight += w;
+      arm0 += w * y0;
+      arm1 += w * y1;
+    }
+    y1y0.noalias() += (w * y1) * y0.transpose();
+  }
+  Mat6 block() const {
+    Mat6 h;
+    h.block<3, 3>(0, 0) = -point_weight * Mat3::Identity();
+    h.block<3, 3>(0, 3) = cross_matrix(arm1);
+    h.block<3, 3>(3, 0) = -cross_matrix(arm0);
+    h.block<3, 3>(3, 3) = y1y0;
+    h.block<3, 3>(3, 3).diagonal().array() -= y1y0.trace();
+    return h;
+  }
+};
+
 }  // namespace
 
 RigidHessian::RigidHessian(const RigidSystem& system, std::vector<int> order)
@@ -47,9 +110,7 @@ void RigidHessian::assemble(const std::vector<BodyState>& state, bool second_ord
     std::vector<std::pair<int, Mat6>> crosses;  // this row's pairs' blocks
     for (size_t row = begin; row < end; ++row) {
       const size_t b = size_t(order_[row]);
-      Mat6 h = Mat6::Zero();
-      Vec6 g = Vec6::Zero();
-      Mat3 s = Mat3::Zero();
+      OwnSums own;
       crosses.clear();
       const int mask = mask_[row];
       if (mask != 0) {
@@ -58,32 +119,36 @@ void RigidHessian::assemble(const std::vector<BodyState>& state, bool second_ord
           const RigidSystem::Coupling& c = sys.couplings[size_t(ci)];
           const int pair = coupling_pair_[size_t(ci)];
           const bool first = pair >= 0 && matrix_.pairs[size_t(pair)].first == int(row);
-          Mat6 cross = Mat6::Zero();  // rows: side 0's dofs
+          CrossSums cross;
           for_each_residual(c, state[size_t(c.body[0])], state[size_t(c.body[1])],
                             [&, side = side](const Vec3& y0, const Vec3& y1, const Vec3& r,
                                              double w, bool point) {
                               if (side == 0)
-                                FeatureBlocks::add_own(h, g, s, y0, r, w, point);
+                                own.add(y0, r, w, point);
                               else
-                                FeatureBlocks::add_own(h, g, s, y1, -r, w, point);
-                              if (first) FeatureBlocks::add_cross(cross, y0, y1, w, point);
+                                own.add(y1, -r, w, point);
+                              if (first) cross.add(y0, y1, w, point);
                             });
           if (!first) continue;
-          if (side != 0) cross.transposeInPlace();  // rows: this row's dofs
+          // Rows: this row's dofs.
+          const Mat6 block = side == 0 ? cross.block() : Mat6(cross.block().transpose());
           auto known = std::find_if(crosses.begin(), crosses.end(),
                                     [&](const auto& e) { return e.first == pair; });
           if (known == crosses.end())
-            crosses.emplace_back(pair, cross);
+            crosses.emplace_back(pair, block);
           else
-            known->second += cross;
+            known->second += block;
         }
         for (int k = sys.spring_begin[b]; k < sys.spring_begin[b + 1]; ++k) {
           const RigidSystem::Spring& spring = sys.springs[size_t(sys.body_springs[size_t(k)])];
           const Vec3 y = state[b].rotation * spring.local;
-          FeatureBlocks::add_own(h, g, s, y, y + state[b].position - spring.target, spring.weight,
-                                 true);
+          own.add(y, y + state[b].position - spring.target, spring.weight, true);
         }
       }
+      Mat6 h;
+      Vec6 g;
+      Mat3 s;
+      own.blocks(h, g, s);
       for (int d = 0; d < 6; ++d)
         if (!(mask & (1 << d))) {
           h.row(d).setZero();
