@@ -19,17 +19,23 @@ using primo::test::max_distance;
 
 namespace {
 
-struct Bent {
-  std::shared_ptr<const Mesh> mesh =
-      std::make_shared<const Mesh>(make_cylinder(0.25, 1.0, 10, 12, FaceShape::Quads));
-  std::shared_ptr<const MeshTopology> topology = std::make_shared<const MeshTopology>(build_topology(*mesh));
-  EditState state = initial_edit_state(int(mesh->n_faces()));
-  Bent() {
+// A quad tube along y, of radius 0.25, with its bottom band fixed and its top band a Pose handle
+// (handles[1]) at rest.
+struct Tube {
+  std::shared_ptr<const Mesh> mesh;
+  std::shared_ptr<const MeshTopology> topology;
+  EditState state;
+  Tube(double length, int segments, int bands) {
+    mesh = std::make_shared<const Mesh>(
+        make_cylinder(0.25, length, segments, bands, FaceShape::Quads));
+    topology = std::make_shared<const MeshTopology>(build_topology(*mesh));
+    state = initial_edit_state(int(mesh->n_faces()));
+    const double band = length / bands;
     std::vector<int> bottom, top;
     for (int f = 0; f < topology->n_faces; ++f) {
       const double y = topology->rest_geometry.centroid[f].y();
-      if (y < 0.09) bottom.push_back(f);
-      if (y > 0.91) top.push_back(f);
+      if (y < band) bottom.push_back(f);
+      if (y > length - band) top.push_back(f);
     }
     add_handle(state, *topology, topology->rest_points, bottom, HandleMode::Fixed);
     add_handle(state, *topology, topology->rest_points, top, HandleMode::Pose);
@@ -41,6 +47,15 @@ struct Bent {
     p->inputs = deformation_inputs(state);
     return p;
   }
+  SolverTargets targets() const {
+    SolverTargets t;
+    for (const HandleGroup& g : state.handles) t.handles.push_back(g.transform());
+    return t;
+  }
+};
+
+struct Bent : Tube {
+  Bent() : Tube(1.0, 10, 12) {}
   std::vector<Vec3> direct() const {
     const DeformationInputs in = deformation_inputs(state);
     Deformer d(*mesh, in.params, in.handles, in.forces);
@@ -156,22 +171,10 @@ TEST(EditorSolverWorker, NewHandlesAtRestSetUpTheSolverBeforeTheDrag) {
 
 TEST(EditorSolverWorker, StopEndsASolveWhereItIsAndTheSameTargetsSolveOn) {
   // A tube of 1,728 quads twisted far: long enough to stop in the middle.
-  auto mesh = std::make_shared<const Mesh>(make_cylinder(0.25, 2.0, 36, 48, FaceShape::Quads));
-  auto topology = std::make_shared<const MeshTopology>(build_topology(*mesh));
-  EditState state = initial_edit_state(int(mesh->n_faces()));
-  std::vector<int> bottom, top;
-  for (int f = 0; f < topology->n_faces; ++f) {
-    const double y = topology->rest_geometry.centroid[f].y();
-    if (y < 0.05) bottom.push_back(f);
-    if (y > 1.95) top.push_back(f);
-  }
-  add_handle(state, *topology, topology->rest_points, bottom, HandleMode::Fixed);
-  add_handle(state, *topology, topology->rest_points, top, HandleMode::Pose);
+  Tube t(2.0, 36, 48);
+  EditState& state = t.state;
   state.handles[1].pose.rotation = Eigen::Quaterniond(Eigen::AngleAxisd(2.8, Vec3::UnitY()));
-  auto p = std::make_shared<SolverProblem>();
-  p->mesh = mesh;
-  p->topology = topology;
-  p->inputs = deformation_inputs(state);
+  auto p = t.problem();
   p->spec.max_iterations = 1;  // no limit applies without set_iteration_limit(true)
   // The format's thin layer (height 1 in mean edge lengths) converges slowly on this twist.
   p->inputs.params.height = 1.0;
@@ -190,11 +193,40 @@ TEST(EditorSolverWorker, StopEndsASolveWhereItIsAndTheSameTargetsSolveOn) {
   EXPECT_TRUE(stopped.stopped_by_user);
   ASSERT_TRUE(stopped.geometry && stopped.geometry->face_motions);  // the shape shown is kept
   // The same targets again: solves on, to convergence (past the limit of 1).
-  SolverTargets targets;
-  for (const HandleGroup& g : state.handles) targets.handles.push_back(g.transform());
-  w.submit_targets(targets);
+  w.submit_targets(t.targets());
   ASSERT_TRUE(w.wait_idle(120));
   EXPECT_EQ(w.status().phase, SolverPhase::Settled);
   EXPECT_FALSE(w.status().stopped_by_user);
   EXPECT_LE(w.status().energy, stopped.energy);
+}
+
+TEST(EditorSolverWorker, AJumpOnTheHierarchicalSolverSettlesWhereADirectSolveEnds) {
+  // After a jump the hierarchical solver's settle is Newton-Krylov steps, which the worker
+  // interrupts for newer requests (SolveOptions::interrupt): a new pose given during the
+  // settle is solved, and the worker ends where a direct solve of it ends.
+  Tube t(2.0, 40, 60);
+  EditState& state = t.state;
+  state.handles[1].pose.rotation = Eigen::Quaterniond(Eigen::AngleAxisd(1.2, Vec3::UnitZ()));
+  state.handles[1].pose.translate = Vec3(0.6, -0.3, 0.0);
+  auto p = t.problem();
+  p->spec.method = SolverMethod::Hierarchical;
+  SolverWorker w;
+  w.set_iteration_limit(false);
+  w.submit_problem(p);
+  for (int i = 0; i < 2000 && w.status().total_iterations < 6; ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  // A second jump, while the first settles.
+  state.handles[1].pose.rotation = Eigen::Quaterniond(Eigen::AngleAxisd(0.9, Vec3::UnitZ()));
+  w.submit_targets(t.targets());
+  ASSERT_TRUE(w.wait_idle(120));
+  ASSERT_EQ(w.status().phase, SolverPhase::Settled);
+
+  const DeformationInputs in = deformation_inputs(state);
+  Deformer direct(*t.mesh, in.params, in.handles, in.forces);
+  SolveOptions o;
+  o.method = SolveMethod::Hierarchical;
+  ASSERT_TRUE(direct.solve(o).converged);
+  EXPECT_GT(direct.hierarchical_solver()->timings().newton_krylov_steps, 0);
+  EXPECT_LT(max_distance(w.status().geometry->positions, direct.vertex_positions()),
+            1e-4 * t.topology->bbox_diagonal);
 }

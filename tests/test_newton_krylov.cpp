@@ -81,6 +81,17 @@ SpotCase spot_with_every_body_kind(Fix head_fix) {
   return s;
 }
 
+// Hierarchical solves to a relative change of 1e-10 on the cylinders of these tests (a
+// coarsest level of at most 150 clusters, so that there are three levels).
+SolveOptions hierarchical_to_convergence() {
+  SolveOptions o;
+  o.method = SolveMethod::Hierarchical;
+  o.tolerance = 1e-10;
+  o.max_iterations = 2000;
+  o.hierarchical.hierarchy.coarsest_max_bodies = 150;
+  return o;
+}
+
 }  // namespace
 
 TEST(RigidHessian, GradientAndExactHessianMatchFiniteDifferencesOfTheEnergy) {
@@ -283,11 +294,7 @@ TEST(NewtonKrylov, StepsReachTheCyclesMinimumInFewerIterationsAndGlobalNewtonKee
   };
   auto hierarchical = [&](double newton_krylov_below) {
     Deformer d(c.mesh, PrismParameters{}, c.handles);
-    SolveOptions o;
-    o.method = SolveMethod::Hierarchical;
-    o.tolerance = 1e-10;
-    o.max_iterations = 2000;
-    o.hierarchical.hierarchy.coarsest_max_bodies = 150;
+    SolveOptions o = hierarchical_to_convergence();
     o.hierarchical.newton_krylov_below = newton_krylov_below;
     o.hierarchical.newton_krylov_above = 0.0;  // the steps near the minimum only
     const SolveReport r = d.solve(o);
@@ -320,11 +327,7 @@ TEST(NewtonKrylov, ASolveFromAfarTakesStepsAndTheSettleOfADragKeepsTheCycles) {
   // targets stay put; a drag that followed the hand settles with cycles. All three end at
   // the same minimum.
   const test::BentCylinder c = test::bent_cylinder(40, 60, 90.0, 30.0);
-  SolveOptions o;
-  o.method = SolveMethod::Hierarchical;
-  o.tolerance = 1e-10;
-  o.max_iterations = 2000;
-  o.hierarchical.hierarchy.coarsest_max_bodies = 150;
+  SolveOptions o = hierarchical_to_convergence();
   struct Run {
     SolveReport report;
     int newton_steps;
@@ -372,6 +375,64 @@ TEST(NewtonKrylov, ASolveFromAfarTakesStepsAndTheSettleOfADragKeepsTheCycles) {
   EXPECT_LT(max_distance(dragged.vertex_positions(), cycles.vertices), 1e-4 * c.diagonal);
 }
 
+TEST(NewtonKrylov, AnInterruptedStepLeavesTheStateAsItWas) {
+  const test::BentCylinder c = test::bent_cylinder(16, 24, 90.0, 30.0);
+  Deformer d(c.mesh, PrismParameters{}, c.handles);
+  NewtonKrylov solver(d.system());
+  std::vector<BodyState> state = d.body_states();
+  const std::vector<BodyState> before = state;
+  const double energy = d.system().energy(state);
+  for (const int allowed : {0, 1}) {  // before the step, and before its first CG iteration
+    int asked = 0;
+    const NewtonKrylovStep step = solver.iterate(state, energy, [&] { return ++asked > allowed; });
+    EXPECT_TRUE(step.interrupted) << allowed;
+    EXPECT_FALSE(step.decreased);
+    EXPECT_EQ(asked, allowed + 1);
+    for (size_t b = 0; b < state.size(); ++b) {
+      ASSERT_EQ(state[b].position, before[b].position);
+      ASSERT_EQ(state[b].rotation, before[b].rotation);
+    }
+  }
+  // Never asked to stop: a step as without the question.
+  const NewtonKrylovStep step = solver.iterate(state, energy, [] { return false; });
+  EXPECT_FALSE(step.interrupted);
+  EXPECT_TRUE(step.decreased);
+}
+
+TEST(NewtonKrylov, AnInterruptedSolveStopsInAStepAndSolvesOnToTheSameMinimum) {
+  // SolveOptions::interrupt, as the editor's solver thread asks it: a solve from afar (its
+  // iterations Newton-Krylov steps) cut short stops where it is, not converged, and the next
+  // solve goes on with steps to where an uninterrupted solve ends.
+  const test::BentCylinder c = test::bent_cylinder(40, 60, 90.0, 30.0);
+  SolveOptions o = hierarchical_to_convergence();
+  Deformer whole(c.mesh, PrismParameters{}, c.handles);
+  int asked_in_whole = 0;
+  o.interrupt = [&] { return ++asked_in_whole < 0; };
+  const SolveReport all = whole.solve(o);
+  ASSERT_TRUE(all.converged);
+  ASSERT_GT(whole.hierarchical_solver()->timings().newton_krylov_steps, 2);
+  // Asked before every iteration and before the steps' conjugate-gradient iterations.
+  EXPECT_GT(asked_in_whole, all.iterations + 5);
+
+  for (const int allowed : {asked_in_whole / 3, asked_in_whole / 2}) {
+    Deformer cut(c.mesh, PrismParameters{}, c.handles);
+    int asked = 0;
+    o.interrupt = [&] { return ++asked > allowed; };
+    const SolveReport first = cut.solve(o);
+    EXPECT_EQ(first.stop_reason, "interrupted") << allowed;
+    EXPECT_FALSE(first.converged);
+    EXPECT_EQ(asked, allowed + 1);
+    EXPECT_LT(first.iterations, all.iterations);
+    EXPECT_NEAR(cut.energy(), first.energy, 1e-12 * first.energy);
+    EXPECT_LE(first.energy, first.initial_energy);
+    o.interrupt = {};
+    const SolveReport rest = cut.solve(o);
+    EXPECT_TRUE(rest.converged) << allowed;
+    EXPECT_NEAR(rest.energy, all.energy, 1e-7 * all.energy);
+    EXPECT_LT(max_distance(cut.vertex_positions(), whole.vertex_positions()), 1e-4 * c.diagonal);
+  }
+}
+
 TEST(NewtonKrylov, AStepThatCannotDescendHandsBackToCycles) {
   // From rest with the handles far away, exact Newton directions are poor; whatever a step
   // finds, the solve still ends at the minimum, and no step raises the energy.
@@ -414,11 +475,7 @@ TEST(NewtonKrylov, PinnedAndTurnedHandlesAndSpringsKeepTheirDerivativesAndTheFla
     g.tolerance = 1e-11;
     ASSERT_TRUE(flat.solve(g).converged);
     Deformer hier(s.mesh, PrismParameters{}, s.handles, s.forces);
-    SolveOptions o;
-    o.method = SolveMethod::Hierarchical;
-    o.tolerance = 1e-10;
-    o.max_iterations = 2000;
-    o.hierarchical.hierarchy.coarsest_max_bodies = 150;
+    SolveOptions o = hierarchical_to_convergence();
     o.hierarchical.newton_krylov_below = 1e-3;
     const SolveReport r = hier.solve(o);
     EXPECT_TRUE(r.converged);

@@ -84,8 +84,8 @@ struct HierarchicalOptions {
   // 0.19 instead of 0.28 s (elephant), 0.73 instead of 0.89 s (armadillo), 3.8 instead of
   // 5.7 s (koala) and about 5.5 instead of 9.5 s (240k faces) (docs/performance.md). After a
   // drag the first settling cycles lower the energy by 1e-5 to 5e-3 of it, after a jump by
-  // 2e-2 to 0.6. 0: cycles there too (the editor: a step is not cancellable, and a settling
-  // batch of steps would keep a new drag waiting for seconds at 240k faces).
+  // 2e-2 to 0.6. 0: cycles there too. A step takes 0.4-0.9 s at 240k faces: the editor
+  // interrupts it when a newer request comes (SolveOptions::interrupt).
   double newton_krylov_above = 1e-2;
   NewtonKrylovOptions newton_krylov;
 };
@@ -123,6 +123,11 @@ class HierarchicalSolver {
   void set_coarse_correction_callback(std::function<void()> callback) {
     coarse_correction_callback_ = std::move(callback);
   }
+  // Asked by Newton-Krylov steps before each of their conjugate-gradient iterations
+  // (SolveOptions::interrupt); empty: never. When it cut a step short, cycle() changed
+  // nothing, returned the energy it was given and interrupted() is true until the next cycle.
+  void set_interrupt(std::function<bool()> interrupt) { interrupt_ = std::move(interrupt); }
+  bool interrupted() const { return interrupted_; }
   // Forget the acceleration history (the targets changed).
   void restart_acceleration() {
     acceleration_.reset();
@@ -162,6 +167,8 @@ class HierarchicalSolver {
   HierarchicalOptions options_;
   std::vector<std::unique_ptr<Level>> levels_;  // finest coarse level first
   std::function<void()> coarse_correction_callback_;
+  std::function<bool()> interrupt_;
+  bool interrupted_ = false;
   std::unique_ptr<GlobalSolver> coarse_solver_;
   SweepPlan fine_plan_;
   bool coarse_exact_ = false;

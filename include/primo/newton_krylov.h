@@ -15,6 +15,7 @@
 // are not positive definite (away from a minimum) the Gauss-Newton matrix is used instead.
 // The same bits on any number of threads.
 
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -50,6 +51,7 @@ struct NewtonKrylovStep {
   bool turn_bounded = false;  // conjugate gradients stopped on NewtonKrylovOptions::max_turn
   bool exact_hessian = false;
   bool decreased = false;
+  bool interrupted = false;  // `interrupt` said so before the step was found: state unchanged
 };
 
 class NewtonKrylov {
@@ -60,8 +62,10 @@ class NewtonKrylov {
   NewtonKrylov& operator=(const NewtonKrylov&) = delete;
 
   // One step from `state` (updated in place when the energy decreased); `energy_before` is the
-  // energy of `state` (computed when NaN).
-  NewtonKrylovStep iterate(std::vector<BodyState>& state, double energy_before);
+  // energy of `state` (computed when NaN). `interrupt`, when given, is asked before the step
+  // and before each conjugate-gradient iteration; true abandons the step.
+  NewtonKrylovStep iterate(std::vector<BodyState>& state, double energy_before,
+                           const std::function<bool()>& interrupt = {});
 
  private:
   struct Impl;

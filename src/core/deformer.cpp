@@ -325,7 +325,8 @@ SolveReport Deformer::solve_now(const SolveOptions& options) {
     report.path_steps = cycles.path_steps;
     report.path_iterations = cycles.path_iterations;
     report.hierarchical_cycles = cycles.iterations;
-    if (cycles.stop_reason == "path budget" || cycles.stop_reason == "not finite") {
+    if (cycles.stop_reason == "path budget" || cycles.stop_reason == "not finite" ||
+        cycles.stop_reason == "interrupted") {
       report.energy = cycles.energy;
       report.stop_reason = cycles.stop_reason;
       return finish(report);
@@ -352,9 +353,17 @@ SolveReport Deformer::solve_now(const SolveOptions& options) {
       report.stop_reason = "energy floor";
       break;
     }
+    if (options.interrupt && options.interrupt()) {
+      report.stop_reason = "interrupted";
+      break;
+    }
     const double before = e;
     const std::optional<double> after = guarded_iterate(options, before, report);
     if (report.stop_reason == "not finite") break;
+    if (options.method == SolveMethod::Hierarchical && hierarchical_->interrupted()) {
+      report.stop_reason = "interrupted";
+      break;
+    }
     if (!after) {
       report.converged = true;
       report.stop_reason = "no further decrease";
@@ -412,8 +421,10 @@ std::optional<double> Deformer::iterate(const SolveOptions& options, double e,
   }
   if (options.method == SolveMethod::Hierarchical) {
     hierarchical_->set_coarse_correction_callback(options.on_coarse_correction);
+    hierarchical_->set_interrupt(options.interrupt);
     const double energy = hierarchical_->cycle(state_, e);
     hierarchical_->set_coarse_correction_callback({});
+    hierarchical_->set_interrupt({});
     return energy;
   }
   local_sweep(system_, state_);

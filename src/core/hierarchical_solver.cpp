@@ -301,6 +301,7 @@ void HierarchicalSolver::prepare(const std::vector<BodyState>& fine_state) {
 
 double HierarchicalSolver::cycle(std::vector<BodyState>& fine_state, double energy_before) {
   const bool settling = cycles_since_restart_ > kMovingCycles;
+  interrupted_ = false;
   // A Newton step that lowered the energy by less than kConfirmBelow of it left the state
   // within about the square of that of the minimum (Newton converges quadratically): all the
   // next iteration has to do is confirm it, and a cycle does so at a tenth of a step's cost.
@@ -316,8 +317,12 @@ double HierarchicalSolver::cycle(std::vector<BodyState>& fine_state, double ener
     const auto t = Clock::now();
     if (!newton_krylov_)
       newton_krylov_ = std::make_unique<NewtonKrylov>(fine_, options_.newton_krylov);
-    const NewtonKrylovStep step = newton_krylov_->iterate(fine_state, energy_before);
+    const NewtonKrylovStep step = newton_krylov_->iterate(fine_state, energy_before, interrupt_);
     timings_.newton_krylov += seconds_since(t);
+    if (step.interrupted) {
+      interrupted_ = true;
+      return std::isnan(energy_before) ? fine_.energy(fine_state) : energy_before;
+    }
     ++timings_.newton_krylov_steps;
     timings_.newton_krylov_iterations += step.cg_iterations;
     ++cycles_since_restart_;

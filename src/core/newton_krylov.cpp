@@ -54,10 +54,11 @@ struct NewtonKrylov::Impl {
         [](double a, double b) { return std::max(a, b); });
   }
 
-  // Conjugate gradients on H x = -gradient from zero. Returns the iterations, or -1 when the
-  // first direction already has non-positive curvature (H is not positive definite there).
-  // `bounded` tells whether they stopped on the largest turn.
-  int conjugate_gradients(bool& bounded) {
+  // Conjugate gradients on H x = -gradient from zero. Returns the iterations, -1 when the
+  // first direction already has non-positive curvature (H is not positive definite there), or
+  // kInterrupted. `bounded` tells whether they stopped on the largest turn.
+  static constexpr int kInterrupted = -2;
+  int conjugate_gradients(bool& bounded, const std::function<bool()>& interrupt) {
     bounded = false;
     const BlockMatrix& h = hessian.matrix();
     const BlockVector& gradient = hessian.gradient();
@@ -72,6 +73,7 @@ struct NewtonKrylov::Impl {
     const double stop = options.forcing * options.forcing * rz;
     int it = 0;
     while (it < options.max_cg_iterations) {
+      if (interrupt && interrupt()) return kInterrupted;
       h.multiply(p, q);
       const double curvature = dot(p, q);
       if (!(curvature > 0.0)) return it == 0 ? -1 : it;  // keep what was found before it
@@ -108,9 +110,14 @@ NewtonKrylov::NewtonKrylov(const RigidSystem& system, const NewtonKrylovOptions&
     : impl_(std::make_unique<Impl>(system, options)) {}
 NewtonKrylov::~NewtonKrylov() = default;
 
-NewtonKrylovStep NewtonKrylov::iterate(std::vector<BodyState>& state, double energy_before) {
+NewtonKrylovStep NewtonKrylov::iterate(std::vector<BodyState>& state, double energy_before,
+                                       const std::function<bool()>& interrupt) {
   Impl& m = *impl_;
   NewtonKrylovStep step;
+  if (interrupt && interrupt()) {
+    step.interrupted = true;
+    return step;
+  }
   step.energy_before = std::isnan(energy_before) ? m.sys.energy(state) : energy_before;
   step.energy_after = step.energy_before;
   m.position.resize(state.size());
@@ -124,7 +131,11 @@ NewtonKrylovStep NewtonKrylov::iterate(std::vector<BodyState>& state, double ene
     m.hessian.assemble(state, exact);
     if (!m.multigrid.set_matrix(m.hessian.matrix(), m.position)) continue;
     bool bounded = false;
-    const int iterations = m.conjugate_gradients(bounded);
+    const int iterations = m.conjugate_gradients(bounded, interrupt);
+    if (iterations == Impl::kInterrupted) {
+      step.interrupted = true;
+      return step;
+    }
     if (iterations <= 0) continue;
     step.largest_turn = m.largest_turn();
     step.turn_bounded = bounded;

@@ -307,13 +307,18 @@ void SolverWorker::step() {
   SolveOptions options;
   options.method = interactive_solve_method(problem_->spec.method, problem_->topology->n_faces);
   options.tolerance = problem_->spec.tolerance;
-  // Cycles after a jump too, not Newton-Krylov steps (HierarchicalOptions::newton_krylov_above):
-  // a step cannot be interrupted, and a settling batch of them would keep a new drag waiting
-  // for seconds on a 240k-face mesh, where a cycle takes about 0.1 s.
-  options.hierarchical.newton_krylov_above = 0.0;
   const int done = status().iterations;
   const bool dragging =
       std::chrono::duration<double>(Clock::now() - last_request_).count() < kDragPauseSeconds;
+  // A settling batch ends as soon as a newer request comes: after a jump its iterations can
+  // be Newton-Krylov steps (HierarchicalOptions::newton_krylov_above) of 0.4-0.9 s each at
+  // 240k faces, which would keep a new drag waiting for seconds. A drag's batches are short
+  // already (kBatchSeconds) and keep their size.
+  if (!dragging)
+    options.interrupt = [this] {
+      std::lock_guard<std::mutex> lock(mutex_);
+      return stop_ || stop_requested_ || pending_problem_ != nullptr || pending_targets_ != nullptr;
+    };
   const int batch = dragging ? chunk_ : std::max(chunk_, kSettleBatch);
   options.max_iterations =
       limited_ ? std::max(0, std::min(batch, problem_->spec.max_iterations - done)) : batch;
