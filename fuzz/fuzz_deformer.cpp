@@ -26,8 +26,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     primo::Deformer deformer = primo::make_scenario_deformer(mesh, resolved);
     primo::SolveOptions options =
         primo::scenario_solve_options(resolved.solver, mesh.n_faces(), "");
-    options.max_iterations = std::min(options.max_iterations, 3);
-    options.max_hierarchical_cycles = 3;
+    // Enough iterations at the final targets for a hierarchical solve from afar to reach its
+    // Newton-Krylov steps (from the fourth on: HierarchicalOptions::newton_krylov_above).
+    options.max_iterations = std::min(options.max_iterations, 6);
+    options.max_hierarchical_cycles = 6;
     options.path.max_iterations = 6;  // a few sub-steps of a large edit, not all of them
     const primo::SolveReport report = deformer.solve(options);
     if (report.stop_reason == "not finite") return 0;
