@@ -3,8 +3,8 @@
 // as a matrix of 6x6 blocks (block_matrix.h): the Gauss-Newton blocks, plus the second-order
 // rotation terms on the diagonal when asked (the exact Hessian in exponential coordinates, as
 // global_solver.h uses). Inactive dofs of handles are masked: their rows and columns are zero
-// with 1 on the diagonal, and their gradient entries are zero. Assembled in parallel, body by
-// body and pair by pair: the same bits on any number of threads.
+// with 1 on the diagonal, and their gradient entries are zero. Assembled in parallel row by
+// row (each pair's block by its first row): the same bits on any number of threads.
 //
 // Rows can be numbered in another order than the bodies (`order`): the multigrid
 // preconditioner's sweeps go part by part (rigid_multigrid.h), and with each part's rows
