@@ -37,7 +37,7 @@ class RigidHessian {
 
  private:
   const RigidSystem& system_;
-  std::vector<int> order_, row_of_;               // row -> body, body -> row
+  std::vector<int> order_;                        // row -> body
   std::vector<int> mask_;                         // active_mask of each row's body
   std::vector<int> coupling_pair_;                // each coupling's pair (-1: none)
   BlockMatrix matrix_;

@@ -83,8 +83,8 @@ RigidHessian::RigidHessian(const RigidSystem& system, std::vector<int> order)
     order_.resize(size_t(n));
     for (int b = 0; b < n; ++b) order_[size_t(b)] = b;
   }
-  row_of_.assign(size_t(n), -1);
-  for (int r = 0; r < n; ++r) row_of_[size_t(order_[size_t(r)])] = r;
+  std::vector<int> row_of(size_t(n), -1);
+  for (int r = 0; r < n; ++r) row_of[size_t(order_[size_t(r)])] = r;
   mask_.resize(size_t(n));
   for (int r = 0; r < n; ++r)
     mask_[size_t(r)] = active_mask(system.bodies[size_t(order_[size_t(r)])].kind);
@@ -92,8 +92,8 @@ RigidHessian::RigidHessian(const RigidSystem& system, std::vector<int> order)
   std::vector<std::pair<int, int>> edges = moving_coupling_edges(system);
   for (auto& [a, b] : edges)
     if (a >= 0) {
-      a = row_of_[size_t(a)];
-      b = row_of_[size_t(b)];
+      a = row_of[size_t(a)];
+      b = row_of[size_t(b)];
     }
   PairNumbering numbering = number_pairs(edges);
   coupling_pair_ = std::move(numbering.pair_of);

@@ -4,6 +4,7 @@
 #include <Eigen/SparseCore>
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 
 #include "primo/body_partition.h"
 #include "primo/cluster_hierarchy.h"
@@ -124,11 +125,9 @@ struct RigidMultigrid::Coarsest {
 std::vector<int> multigrid_row_order(const RigidSystem& fine) {
   const int n = fine.n_bodies();
   std::vector<int> all(static_cast<size_t>(n));
+  std::iota(all.begin(), all.end(), 0);
   std::vector<Vec3> position(static_cast<size_t>(n));
-  for (int b = 0; b < n; ++b) {
-    all[size_t(b)] = b;
-    position[size_t(b)] = fine.bodies[size_t(b)].rest_center;
-  }
+  for (int b = 0; b < n; ++b) position[size_t(b)] = fine.bodies[size_t(b)].rest_center;
   std::vector<int> order;
   order.reserve(size_t(n));
   for (const std::vector<int>& part :
@@ -159,7 +158,7 @@ RigidMultigrid::RigidMultigrid(const RigidSystem& fine,
     fine_level->position[size_t(row_of_body[size_t(b)])] = fine.bodies[size_t(b)].rest_center;
   if (hierarchy.coarse_levels() > 0) {
     std::vector<int> all(static_cast<size_t>(n_fine));
-    for (int r = 0; r < n_fine; ++r) all[size_t(r)] = r;
+    std::iota(all.begin(), all.end(), 0);
     fine_level->partition = partition_bodies(std::move(all), fine_level->position, fine_pairs);
   }
   std::vector<std::pair<int, int>> pairs = fine_pairs;
@@ -173,42 +172,36 @@ RigidMultigrid::RigidMultigrid(const RigidSystem& fine,
       parent[size_t(row_of_body[size_t(b)])] = hierarchy.cluster_of[size_t(l)][size_t(b)];
     auto level = std::make_unique<Level>();
     Level& coarse = *level;
+    // The clusters' children and rest positions, and the finer pairs as pairs of clusters.
+    std::vector<std::pair<int, int>> edges(pairs.size());
+    auto take_parents = [&] {
+      coarse.children = group_by(parent, n_coarse);
+      coarse.position.resize(size_t(n_coarse));
+      coarse.take_mean_positions(finer);
+      for (size_t p = 0; p < pairs.size(); ++p)
+        edges[p] = {parent[size_t(pairs[p].first)], parent[size_t(pairs[p].second)]};
+    };
+    take_parents();
     if (l + 1 < hierarchy.coarse_levels()) {
       // A level that is swept (all but the coarsest) gets its smoothing partition by its
       // clusters' rest positions, and its clusters are numbered part after part, so that each
       // part's rows are contiguous.
-      const Groups children = group_by(parent, n_coarse);
-      std::vector<Vec3> position(static_cast<size_t>(n_coarse));
-      for (size_t c = 0; c < position.size(); ++c) {
-        Vec3 sum = Vec3::Zero();
-        for (int k = children.begin[c]; k < children.begin[c + 1]; ++k)
-          sum += finer.position[size_t(children.items[size_t(k)])];
-        position[c] = sum / double(children.begin[c + 1] - children.begin[c]);
-      }
-      std::vector<std::pair<int, int>> edges(pairs.size());
-      for (size_t p = 0; p < pairs.size(); ++p)
-        edges[p] = {parent[size_t(pairs[p].first)], parent[size_t(pairs[p].second)]};
       std::vector<int> all(static_cast<size_t>(n_coarse));
-      for (int c = 0; c < n_coarse; ++c) all[size_t(c)] = c;
-      coarse.partition = partition_bodies(std::move(all), position, edges);
+      std::iota(all.begin(), all.end(), 0);
+      coarse.partition = partition_bodies(std::move(all), coarse.position, edges);
       std::vector<int> renumbered(size_t(n_coarse), -1);
       int next = 0;
       for (std::vector<int>& part : coarse.partition.parts)
         for (int& c : part) c = renumbered[size_t(c)] = next++;  // stays ascending
       for (int& c : parent) c = renumbered[size_t(c)];
+      take_parents();
     }
     finer.parent = std::move(parent);
-    coarse.children = group_by(finer.parent, n_coarse);
-    coarse.position.resize(size_t(n_coarse));
-    coarse.take_mean_positions(finer);
     // Finer pairs inside a cluster add to its diagonal block, the others to the block of
     // their clusters' pair.
-    std::vector<std::pair<int, int>> edges(pairs.size());
     std::vector<int> inside(pairs.size(), -1);
-    for (size_t p = 0; p < pairs.size(); ++p) {
-      edges[p] = {finer.parent[size_t(pairs[p].first)], finer.parent[size_t(pairs[p].second)]};
+    for (size_t p = 0; p < pairs.size(); ++p)
       if (edges[p].first == edges[p].second) inside[p] = edges[p].first;
-    }
     PairNumbering numbering = number_pairs(edges);
     coarse.internal = group_by(inside, n_coarse);
     coarse.sources = group_by(numbering.pair_of, int(numbering.pairs.size()));
