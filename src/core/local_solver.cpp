@@ -5,6 +5,7 @@
 #include <limits>
 #include <thread>
 
+#include "prefetch.h"
 #include "primo/body_partition.h"
 #include "primo/horn.h"
 #include "primo/parallel.h"
@@ -197,6 +198,10 @@ void build_joint_slots(SweepPlan& plan, const RigidSystem& system) {
 
 }  // namespace
 
+// A coarse level's plan is packed again every cycle from its couplings, which each body
+// reaches out of order (by coupling index): they are fetched this many ahead.
+constexpr int kPackAhead = 4;
+
 void refresh_sweep_plan(SweepPlan& plan, const RigidSystem& system) {
   const int n = system.n_bodies();
   if (plan.joint_slot.size() != system.body_couplings.size() ||
@@ -205,6 +210,7 @@ void refresh_sweep_plan(SweepPlan& plan, const RigidSystem& system) {
   plan.joint_weight.resize(n);
   plan.joint_source.resize(n);
   parallel_chunks(size_t(n), kParallelGrain, [&](size_t begin, size_t end) {
+    const int last_coupling = system.coupling_begin[end];
     for (int b = int(begin); b < int(end); ++b) {
       for (int s = plan.joint_begin[b]; s < plan.joint_begin[b + 1]; ++s) {
         SweepPlan::PackedJoint& j = plan.joints[s];  // `other` is set once, with the slots
@@ -215,6 +221,10 @@ void refresh_sweep_plan(SweepPlan& plan, const RigidSystem& system) {
       double weight = 0.0;
       Vec3 source = Vec3::Zero();
       for (int k = system.coupling_begin[b]; k < system.coupling_begin[b + 1]; ++k) {
+        if (k + kPackAhead < last_coupling)
+          prefetch_bytes(
+              &system.couplings[size_t(system.body_couplings[size_t(k + kPackAhead)].first)],
+              sizeof(RigidSystem::Coupling));
         const auto [ci, side] = system.body_couplings[k];
         const RigidSystem::Coupling& c = system.couplings[ci];
         SweepPlan::PackedJoint& j = plan.joints[plan.joint_slot[k]];
