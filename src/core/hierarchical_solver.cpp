@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "prefetch.h"
+#include "primo/block_matrix.h"
 #include "primo/horn.h"
 #include "primo/parallel.h"
 
@@ -40,6 +41,7 @@ struct HierarchicalSolver::Level {
   std::vector<int> parent_of;      // body of the next finer level (or fine body) -> cluster
   std::vector<int> coupling_parent;  // level coupling -> same joint's coupling one level finer
   std::vector<double> child_weight;  // faces of each body of the next finer level
+  Groups children;                   // cluster -> its bodies of the next finer level, ascending
   // A cluster's orientation at restriction: on the coarsest level the mean rotation of its
   // prisms (it turns the rest metric and the reused coarse factors), elsewhere the rotation of
   // a representative fine body (its largest), found through the body of the next finer level
@@ -87,6 +89,7 @@ HierarchicalSolver::HierarchicalSolver(const RigidSystem& fine, const Hierarchic
           fine.bodies[b].faces.size() > fine.bodies[representative[c]].faces.size())
         representative[c] = b;
     }
+    level->children = group_by(level->parent_of, n_clusters);
     level->representative_child.resize(n_clusters);
     for (int c = 0; c < n_clusters; ++c) {
       const int rep = representative[c];
@@ -184,12 +187,6 @@ void HierarchicalSolver::restrict_level(Level& level, const RigidSystem& finer,
   RigidSystem& sys = level.system;
   const int n = sys.n_bodies();
   const bool swept = &level != levels_.back().get();  // the coarsest level is solved globally
-  std::vector<Vec3> center(n, Vec3::Zero());
-  std::vector<double> weight(n, 0.0);
-  for (int b = 0; b < finer.n_bodies(); ++b) {
-    center[level.parent_of[b]] += level.child_weight[b] * finer_state[b].position;
-    weight[level.parent_of[b]] += level.child_weight[b];
-  }
   level.correction.resize(n);
   auto child_orientation = [&](int child) {
     return finer_orientation ? Mat3(finer_state[child].rotation * (*finer_orientation)[child])
@@ -198,26 +195,32 @@ void HierarchicalSolver::restrict_level(Level& level, const RigidSystem& finer,
   // The coarsest level's orientations are its clusters' mean rotations: they orient the
   // metric of the coarse Newton step and turn its reused factors. Elsewhere one child's
   // rotation is enough (they only pass on to the next coarser level).
-  std::vector<Mat3> rotation_sum;
-  if (!swept) {
-    rotation_sum.assign(n, Mat3::Zero());
-    for (int b = 0; b < finer.n_bodies(); ++b)
-      rotation_sum[level.parent_of[b]] += level.child_weight[b] * child_orientation(b);
-  }
-  for (int c = 0; c < n; ++c) {
-    RigidSystem::Body& body = sys.bodies[c];
-    body.rest_center = center[c] / weight[c];
-    // The cluster's prisms have moved; orient its rest metric by them.
-    level.orientation[c] = child_orientation(level.representative_child[c]);
-    if (!swept) {  // only the coarse Newton step measures motions in the metric
-      level.orientation[c] = horn_rotation(rotation_sum[c].transpose(), level.orientation[c]);
-      const Mat3& R = level.orientation[c];
-      body.metric_mean = R * level.rest_metric_mean[c];
-      body.metric_centered = R * level.rest_metric_centered[c] * R.transpose();
-      body.metric_pinned = R * level.rest_metric_pinned[c] * R.transpose();
+  // Each cluster from its children, in their order (the same sums on any number of threads).
+  parallel_chunks(size_t(n), kParallelGrain / 8, [&](size_t begin, size_t end) {
+    for (size_t c = begin; c < end; ++c) {
+      Vec3 center = Vec3::Zero();
+      double weight = 0.0;
+      Mat3 rotation_sum = Mat3::Zero();
+      for (int k = level.children.begin[c]; k < level.children.begin[c + 1]; ++k) {
+        const int b = level.children.items[size_t(k)];
+        center += level.child_weight[b] * finer_state[b].position;
+        weight += level.child_weight[b];
+        if (!swept) rotation_sum += level.child_weight[b] * child_orientation(b);
+      }
+      RigidSystem::Body& body = sys.bodies[c];
+      body.rest_center = center / weight;
+      // The cluster's prisms have moved; orient its rest metric by them.
+      level.orientation[c] = child_orientation(level.representative_child[c]);
+      if (!swept) {  // only the coarse Newton step measures motions in the metric
+        level.orientation[c] = horn_rotation(rotation_sum.transpose(), level.orientation[c]);
+        const Mat3& R = level.orientation[c];
+        body.metric_mean = R * level.rest_metric_mean[c];
+        body.metric_centered = R * level.rest_metric_centered[c] * R.transpose();
+        body.metric_pinned = R * level.rest_metric_pinned[c] * R.transpose();
+      }
+      level.correction[c] = {Mat3::Identity(), body.rest_center};
     }
-    level.correction[c] = {Mat3::Identity(), body.rest_center};
-  }
+  });
   parallel_chunks(sys.couplings.size(), kParallelGrain, [&](size_t begin, size_t end) {
     for (size_t k = begin; k < end; ++k) {
       if (k + kRestrictAhead < end)
