@@ -1,6 +1,7 @@
 #include "primo/rigid_hessian.h"
 
 #include <algorithm>
+#include <numeric>
 
 #include "primo/global_solver.h"
 #include "primo/parallel.h"
@@ -81,7 +82,7 @@ RigidHessian::RigidHessian(const RigidSystem& system, std::vector<int> order)
   const int n = system.n_bodies();
   if (order_.empty()) {
     order_.resize(size_t(n));
-    for (int b = 0; b < n; ++b) order_[size_t(b)] = b;
+    std::iota(order_.begin(), order_.end(), 0);
   }
   std::vector<int> row_of(size_t(n), -1);
   for (int r = 0; r < n; ++r) row_of[size_t(order_[size_t(r)])] = r;

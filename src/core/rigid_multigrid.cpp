@@ -79,15 +79,16 @@ bool spd_inverse(const Mat6& a, Mat6& inverse) {
 // the next rows' blocks while it computes; it is told to, a few rows ahead (at 240k faces a
 // cycle took 44 instead of 53 ms, in alternating runs).
 constexpr size_t kPrefetchRows = 3;
-// The Galerkin projection gathers each coarse block from finer pair blocks scattered through
-// the finer matrix: it fetches them this many ahead (the set-up at 240k faces: 52-56 ms
-// instead of 62-64).
-constexpr int kGatherAhead = 4;
 void prefetch_row(const BlockMatrix& a, const std::vector<Mat6f>& diag_inverse, int row) {
   prefetch_bytes(a.row_block.data() + a.row_begin[size_t(row)],
                  size_t(a.row_begin[size_t(row) + 1] - a.row_begin[size_t(row)]) * sizeof(Mat6f));
   prefetch_bytes(&diag_inverse[size_t(row)], sizeof(Mat6f));
 }
+
+// The Galerkin projection gathers each coarse block from finer pair blocks scattered through
+// the finer matrix: it fetches them this many ahead (the set-up at 240k faces: 52-56 ms
+// instead of 62-64).
+constexpr int kGatherAhead = 4;
 
 }  // namespace
 
