@@ -1,12 +1,12 @@
 // Anderson acceleration of rigid-state iterations.
 
-#include "primo/anderson_acceleration.h"
-
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
 #include <cmath>
 
+#include "primo/anderson_acceleration.h"
+#include "primo/error.h"
 #include "primo/global_solver.h"
 
 using namespace primo;
@@ -99,4 +99,51 @@ TEST(AndersonAcceleration, ConvergesThroughAHalfTurn) {
   EXPECT_LT(error, 1e-9);
   EXPECT_LE(steps, 8);  // plain iteration: 0.95^n < 1e-9 needs n > 400; without the sign
                         // alignment: no convergence in 40
+}
+
+// The hierarchical solver hands the input over only on the first accelerated cycle and then
+// lets the acceleration remember the state it left (its proposal, or the image after a
+// refusal): the proposals are those of passing every input, to rounding.
+TEST(AndersonAcceleration, RemembersTheStateItLeft) {
+  std::vector<BodyState> fixed(3), x(3);
+  for (int b = 0; b < 3; ++b) {
+    fixed[b].rotation =
+        Eigen::AngleAxisd(0.4 * b + 0.2, Vec3(1, b, 2).normalized()).toRotationMatrix();
+    fixed[b].position = Vec3(b, 1.0, -b);
+    x[b].position = fixed[b].position + Vec3(0.5, -0.3, 0.2);
+  }
+  auto image_of = [&](const std::vector<BodyState>& s) {
+    std::vector<BodyState> y = contract(s, fixed);
+    for (size_t b = 0; b < s.size(); ++b)  // a slow turn towards the fixed rotation
+    {
+      const Eigen::AngleAxisd rest(Mat3(fixed[b].rotation * s[b].rotation.transpose()));
+      y[b].rotation = rotation_from_vector(0.3 * rest.angle() * rest.axis()) * s[b].rotation;
+    }
+    return y;
+  };
+  AndersonAcceleration told(4), remembering(4);
+  EXPECT_FALSE(remembering.knows_input());
+  std::vector<BodyState> proposal_told, proposal_remembered, y = x;
+  for (int step = 0; step < 10; ++step) {
+    const std::vector<BodyState> image = image_of(y);
+    const bool a = told.propose(&y, image, proposal_told);
+    const bool b = remembering.propose(step == 0 ? &y : nullptr, image, proposal_remembered);
+    ASSERT_EQ(a, b);
+    EXPECT_TRUE(remembering.knows_input());
+    // Every third proposal is refused: the caller goes on from the image.
+    const bool refuse = step % 3 == 2;
+    if (a && refuse) {
+      told.refuse();
+      remembering.refuse();
+    }
+    for (size_t k = 0; k < y.size(); ++k) {
+      if (!a) continue;
+      EXPECT_LT((proposal_told[k].rotation - proposal_remembered[k].rotation).norm(), 1e-12);
+      EXPECT_LT((proposal_told[k].position - proposal_remembered[k].position).norm(), 1e-12);
+    }
+    y = a && !refuse ? proposal_told : image;
+  }
+  remembering.reset();
+  EXPECT_FALSE(remembering.knows_input());
+  EXPECT_THROW(remembering.propose(nullptr, y, proposal_remembered), Error);
 }

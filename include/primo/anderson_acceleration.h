@@ -23,22 +23,42 @@ class AndersonAcceleration {
   // At most 64 cycles of history.
   explicit AndersonAcceleration(int history) : history_(std::min(history, 64)) {}
 
-  // `input` was mapped to `image` by one step of the iteration. Returns the accelerated next
-  // state, or `image` itself while there is no history yet. Bodies whose state never changed
-  // in the history (fixed handles) are returned exactly as in `image`.
+  // `input` was mapped to `image` by one step of the iteration; null: the input is the state
+  // the last call left (knows_input()), whose embedding is kept, so that the caller need not
+  // keep a copy of it and no rotation is embedded twice. Writes the accelerated next state to
+  // `next` and returns true, or returns false (nothing written) while there is no history
+  // yet. Bodies whose state never changed in the history (fixed handles) are written exactly
+  // as in `image`. The proposal is taken to be kept unless refuse() is called.
+  bool propose(const std::vector<BodyState>* input, const std::vector<BodyState>& image,
+               std::vector<BodyState>& next);
+  // As above, returning `image` itself while there is no history.
   std::vector<BodyState> propose(const std::vector<BodyState>& input,
                                  const std::vector<BodyState>& image);
-  // Forget the history (the proposal was refused, or the problem changed).
+  // The proposal was refused: the caller kept `image`. Forgets the history.
+  void refuse();
+  // Forget everything (the problem or the state changed outside the iteration).
   void reset();
+  // Whether the state the last call left is known (then propose may be given a null input).
+  bool knows_input() const { return kept_ != Kept::None; }
 
   int history() const { return history_; }
   int stored() const { return int(delta_residual_.size()); }
 
  private:
+  enum class Kept { None, Image, Proposal };
+  void forget_history();
+  std::vector<float> spare_buffer();  // one of spare_, or an empty one
+
   int history_;
+  Kept kept_ = Kept::None;
+  // Large buffers live across calls (the history's in spare_ after a restart): allocating
+  // them per call cost page faults on every cycle.
+  std::vector<double> residual_;
+  std::vector<double> proposal_embedding_;  // the last proposal, as it was normalized
   std::vector<float> last_residual_;
   std::vector<double> last_image_;
   std::vector<std::vector<float>> delta_residual_, delta_image_;  // oldest first
+  std::vector<std::vector<float>> spare_;
   Eigen::MatrixXd gram_;  // inner products of the residual differences
 };
 

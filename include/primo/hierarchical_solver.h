@@ -173,7 +173,7 @@ class HierarchicalSolver {
   SweepPlan fine_plan_;
   bool coarse_exact_ = false;
   AndersonAcceleration acceleration_;
-  std::vector<BodyState> cycle_input_;
+  std::vector<BodyState> cycle_input_, proposal_;
   int cycles_since_restart_ = 0;
   std::unique_ptr<NewtonKrylov> newton_krylov_;  // made on first use
   bool krylov_failed_ = false;    // a step did not lower the energy since the targets moved

@@ -366,7 +366,10 @@ double HierarchicalSolver::cycle_only(std::vector<BodyState>& fine_state, double
   // cycle, and would pay for bookkeeping it can never use.
   const bool accelerate = acceleration_.history() > 0 && cycles_since_restart_ > 0;
   ++cycles_since_restart_;
-  if (accelerate) cycle_input_ = fine_state;
+  // The acceleration knows the state its last proposal left (kept or refused) by its
+  // embedding; only the first accelerated cycle needs a copy of the input.
+  const bool input_known = accelerate && acceleration_.knows_input();
+  if (accelerate && !input_known) cycle_input_ = fine_state;
   // With the energy before the cycle known, an accelerated proposal is kept when it lies below
   // it (still a descent method), and the plain cycle's result needs no energy of its own
   // unless the proposal is refused: one pass over all joints less per accepted cycle.
@@ -374,15 +377,14 @@ double HierarchicalSolver::cycle_only(std::vector<BodyState>& fine_state, double
   double energy = plain_cycle(fine_state, !skip_plain_energy);
   if (accelerate) {
     const auto t = Clock::now();
-    std::vector<BodyState> proposal = acceleration_.propose(cycle_input_, fine_state);
-    if (acceleration_.stored() > 0) {
-      const double proposed = fine_.energy(proposal);
+    if (acceleration_.propose(input_known ? nullptr : &cycle_input_, fine_state, proposal_)) {
+      const double proposed = fine_.energy(proposal_);
       if (proposed < (skip_plain_energy ? energy_before : energy)) {
-        fine_state.swap(proposal);
+        fine_state.swap(proposal_);
         energy = proposed;
         ++timings_.accepted_accelerations;
       } else {
-        acceleration_.reset();
+        acceleration_.refuse();
       }
     }
     timings_.acceleration += seconds_since(t);
