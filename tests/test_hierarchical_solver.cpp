@@ -232,6 +232,69 @@ TEST(HierarchicalSolver, RecoversFromACollapse) {
   EXPECT_LT(error, 1e-4);
 }
 
+// The coarsest level holds one coupling per pair of neighbouring clusters (coupling_moments.h):
+// its energy under any motions of the clusters must be the fine energy of the fine bodies
+// moved with them, less the joints inside the clusters (which no cluster motion changes).
+// With one coarse level its couplings come from the fine ones; with several, from the level
+// next finer, which writes them as it is restricted.
+TEST(HierarchicalSolver, TheCoarsestLevelHasTheEnergyOfTheFineBodiesItMoves) {
+  const PosedMesh s = posed_spot();
+  for (const int coarsest_max_bodies : {HierarchyOptions{}.coarsest_max_bodies, 60}) {
+    Deformer d(s.mesh, PrismParameters{}, s.handles);
+    d.solve(hierarchical(3, 0.0, coarsest_max_bodies));  // a state that is not the minimum
+    const RigidSystem& fine = d.system();
+    HierarchicalOptions options;
+    options.hierarchy.coarsest_max_bodies = coarsest_max_bodies;
+    HierarchicalSolver solver(fine, options);
+    const int coarsest = solver.levels() - 1;
+    if (coarsest_max_bodies == 60)
+      ASSERT_GE(solver.levels(), 3);
+    else
+      ASSERT_EQ(solver.levels(), 2);
+    const std::vector<BodyState> state = d.body_states();
+    solver.prepare(state);
+    const RigidSystem& coarse = solver.system(coarsest);
+    std::vector<int> cluster(size_t(fine.n_bodies()));
+    for (int b = 0; b < fine.n_bodies(); ++b)
+      cluster[size_t(b)] = coarse.face_body[size_t(fine.bodies[size_t(b)].faces[0])];
+    double inside = 0.0;
+    for (const RigidSystem::Coupling& c : fine.couplings)
+      if (cluster[size_t(c.body[0])] == cluster[size_t(c.body[1])])
+        inside += fine.coupling_energy(c, state[size_t(c.body[0])], state[size_t(c.body[1])]);
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<double> u(-0.3, 0.3);
+    for (int trial = 0; trial < 4; ++trial) {
+      // Trial 0: every cluster where it is; then random turns and shifts of every free one.
+      std::vector<BodyState> correction(size_t(coarse.n_bodies()));
+      for (int c = 0; c < coarse.n_bodies(); ++c) {
+        const RigidSystem::Body& body = coarse.bodies[size_t(c)];
+        const bool moved = trial > 0 && body.kind == BodyKind::Free;
+        correction[size_t(c)] = {
+            moved ? rotation_from_vector(Vec3(u(rng), u(rng), u(rng))) : Mat3::Identity(),
+            body.rest_center + (moved ? Vec3(u(rng), u(rng), u(rng)) : Vec3::Zero())};
+      }
+      std::vector<BodyState> moved = state;
+      for (int b = 0; b < fine.n_bodies(); ++b) {
+        const int c = cluster[size_t(b)];
+        const BodyState& k = correction[size_t(c)];
+        BodyState& m = moved[size_t(b)];
+        m.position = k.rotation * (m.position - coarse.bodies[size_t(c)].rest_center) + k.position;
+        m.rotation = k.rotation * m.rotation;
+      }
+      const double expected = fine.energy(moved) - inside;
+      EXPECT_NEAR(coarse.energy(correction), expected, 1e-9 * fine.energy(moved))
+          << solver.levels() << " levels, trial " << trial;
+    }
+    // Fewer couplings than the fine joints crossing the clusters' borders: one per pair.
+    std::set<std::pair<int, int>> pairs;
+    for (const RigidSystem::Coupling& c : fine.couplings) {
+      const int a = cluster[size_t(c.body[0])], b = cluster[size_t(c.body[1])];
+      if (a != b) pairs.insert({std::min(a, b), std::max(a, b)});
+    }
+    EXPECT_EQ(coarse.couplings.size(), pairs.size());
+  }
+}
+
 TEST(HierarchicalSolver, AConvergedStateCostsNothing) {
   const PosedMesh s = bent_cylinder();
   Deformer d(s.mesh, PrismParameters{}, s.handles);

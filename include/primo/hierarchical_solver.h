@@ -3,7 +3,8 @@
 // coarse level moves whole clusters of fine prisms rigidly on top of the current fine state.
 //
 // One cycle: restrict every level from the next finer one in its current state (the fine
-// joints crossing cluster borders and the springs become the level's couplings; only the
+// joints crossing cluster borders and the springs become the level's couplings, on the
+// coarsest level summed into one coupling per pair of clusters, coupling_moments.h; only the
 // first coarse level reads the fine bodies), optimize the coarsest level's corrections by
 // global Newton matching, then for each finer level apply (prolong) the corrections of the
 // level above and run local sweeps on it, and finally on the fine level. Every step lowers
@@ -143,6 +144,8 @@ class HierarchicalSolver {
   // setting, known after the first coarse factorization).
   int drag_factor_lag() const;
   int bodies(int level) const;  // level 0 = fine
+  // A level's system as its last restriction left it (level 0: the fine system).
+  const RigidSystem& system(int level) const;
   const HierarchicalTimings& timings() const { return timings_; }
   const GlobalSolver* coarse_solver() const { return coarse_solver_.get(); }
   // Frees the Newton-Krylov steps' matrices and vectors (about 300 MB at 240k faces) once a
@@ -151,6 +154,9 @@ class HierarchicalSolver {
 
  private:
   struct Level;
+  static void merge_coupled_pairs(Level& level, Level* finer_level, const RigidSystem& fine,
+                                  const std::vector<int>& finer_coupling_fine,
+                                  const std::vector<int>& cluster_of);
   // Takes the level's joints and springs from the next finer level in its current state
   // (`finer_orientation`: that level's own orientations, null for the fine level).
   void restrict_level(Level& level, const RigidSystem& finer,

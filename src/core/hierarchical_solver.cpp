@@ -4,9 +4,11 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <unordered_map>
 
 #include "prefetch.h"
 #include "primo/block_matrix.h"
+#include "primo/coupling_moments.h"
 #include "primo/horn.h"
 #include "primo/parallel.h"
 
@@ -40,6 +42,19 @@ struct HierarchicalSolver::Level {
   RigidSystem system;              // couplings/springs rewritten by every restriction
   std::vector<int> parent_of;      // body of the next finer level (or fine body) -> cluster
   std::vector<int> coupling_parent;  // level coupling -> same joint's coupling one level finer
+  // The coarsest level has one coupling per pair of neighbouring clusters (coupling_moments.h):
+  // coupling k sums the finer couplings merged[merged_begin[k] .. merged_begin[k + 1]), each
+  // seen from the finer body on cluster k's side 0 and in the finer bodies' frames, and
+  // merged_trace[k] is their vector modes' constant. When the next finer level is the fine
+  // one, `merged` is written once (fine couplings never change); otherwise that level's
+  // restriction writes it through its merged_slot as it re-expresses its couplings, so that
+  // restricting the coarsest level streams one array instead of gathering finer couplings.
+  std::vector<int> merged_begin;
+  std::vector<OrientedCoupling> merged;
+  std::vector<double> merged_trace;
+  // On the level next finer than the coarsest: coupling -> 2 x its entry in the coarsest's
+  // `merged` (+1 when seen from its side 1), -1 for couplings inside a coarsest cluster.
+  std::vector<int> merged_slot;
   std::vector<double> child_weight;  // faces of each body of the next finer level
   Groups children;                   // cluster -> its bodies of the next finer level, ascending
   // A cluster's orientation at restriction: on the coarsest level the mean rotation of its
@@ -53,6 +68,51 @@ struct HierarchicalSolver::Level {
   std::vector<BodyState> correction;
   SweepPlan plan;
 };
+
+// The coarsest level's couplings: one per pair of clusters that finer couplings join, in the
+// order of the pairs' first finer couplings, oriented as that one. `finer_level`: the next
+// finer level, null when it is the fine one (`finer_coupling_fine`: each of its couplings'
+// fine coupling).
+void HierarchicalSolver::merge_coupled_pairs(Level& level, Level* finer_level,
+                                             const RigidSystem& fine,
+                                             const std::vector<int>& finer_coupling_fine,
+                                             const std::vector<int>& cluster_of) {
+  std::unordered_map<uint64_t, int> pair_index;
+  std::vector<std::vector<int>> members;  // finer coupling k as 2k, or 2k + 1 when turned
+  RigidSystem& sys = level.system;
+  for (size_t k = 0; k < finer_coupling_fine.size(); ++k) {
+    const auto& fc = fine.couplings[size_t(finer_coupling_fine[k])];
+    const int a = cluster_of[size_t(fc.body[0])], b = cluster_of[size_t(fc.body[1])];
+    if (a == b) continue;
+    const uint64_t key = (uint64_t(std::min(a, b)) << 32) | uint64_t(std::max(a, b));
+    const auto [it, added] = pair_index.emplace(key, int(members.size()));
+    if (added) {
+      RigidSystem::Coupling c = fc;
+      c.body[0] = a;
+      c.body[1] = b;
+      sys.couplings.push_back(c);
+      members.emplace_back();
+    }
+    const bool turned = sys.couplings[size_t(it->second)].body[0] != a;
+    members[size_t(it->second)].push_back(2 * int(k) + int(turned));
+  }
+  level.merged_begin.assign(1, 0);
+  level.merged_trace.assign(members.size(), 0.0);
+  if (finer_level) finer_level->merged_slot.assign(finer_coupling_fine.size(), -1);
+  for (size_t p = 0; p < members.size(); ++p) {
+    for (const int m : members[p]) {
+      const size_t k = size_t(m / 2);
+      const bool turned = m % 2 == 1;
+      // A finer coupling's vector modes are its fine coupling's, turned.
+      const RigidSystem::Coupling& fc = fine.couplings[size_t(finer_coupling_fine[k])];
+      level.merged_trace[p] += vector_mode_trace(fc);
+      if (finer_level)
+        finer_level->merged_slot[k] = 2 * int(level.merged.size()) + int(turned);
+      level.merged.push_back(finer_level ? OrientedCoupling{} : OrientedCoupling::of(fc, turned));
+    }
+    level.merged_begin.push_back(int(level.merged.size()));
+  }
+}
 
 HierarchicalSolver::HierarchicalSolver(const RigidSystem& fine, const HierarchicalOptions& options)
     : fine_(fine), options_(options), acceleration_(options.acceleration_history) {
@@ -105,16 +165,21 @@ HierarchicalSolver::HierarchicalSolver(const RigidSystem& fine, const Hierarchic
     }
     for (int c = 0; c < n_clusters; ++c) sys.bodies[c].kind = kinds[c];
     std::vector<int> coupling_fine;
-    for (size_t k = 0; k < finer->couplings.size(); ++k) {
-      const auto& fc = fine.couplings[finer_coupling_fine[k]];
-      const int a = cluster_of[fc.body[0]], b = cluster_of[fc.body[1]];
-      if (a == b) continue;
-      RigidSystem::Coupling c = fc;
-      c.body[0] = a;
-      c.body[1] = b;
-      sys.couplings.push_back(c);
-      level->coupling_parent.push_back(int(k));
-      coupling_fine.push_back(finer_coupling_fine[k]);
+    if (l + 1 < hierarchy.coarse_levels()) {
+      for (size_t k = 0; k < finer->couplings.size(); ++k) {
+        const auto& fc = fine.couplings[finer_coupling_fine[k]];
+        const int a = cluster_of[fc.body[0]], b = cluster_of[fc.body[1]];
+        if (a == b) continue;
+        RigidSystem::Coupling c = fc;
+        c.body[0] = a;
+        c.body[1] = b;
+        sys.couplings.push_back(c);
+        level->coupling_parent.push_back(int(k));
+        coupling_fine.push_back(finer_coupling_fine[k]);
+      }
+    } else {
+      merge_coupled_pairs(*level, levels_.empty() ? nullptr : levels_.back().get(), fine,
+                          finer_coupling_fine, cluster_of);
     }
     index_couplings(sys);
 
@@ -177,8 +242,10 @@ int HierarchicalSolver::drag_factor_lag() const {
   return int(std::clamp(steps, double(kMinAutoLag), double(kMaxAutoLag)));
 }
 
-int HierarchicalSolver::bodies(int level) const {
-  return level == 0 ? fine_.n_bodies() : levels_[level - 1]->system.n_bodies();
+int HierarchicalSolver::bodies(int level) const { return system(level).n_bodies(); }
+
+const RigidSystem& HierarchicalSolver::system(int level) const {
+  return level == 0 ? fine_ : levels_[size_t(level - 1)]->system;
 }
 
 void HierarchicalSolver::restrict_level(Level& level, const RigidSystem& finer,
@@ -221,30 +288,71 @@ void HierarchicalSolver::restrict_level(Level& level, const RigidSystem& finer,
       level.correction[c] = {Mat3::Identity(), body.rest_center};
     }
   });
-  parallel_chunks(sys.couplings.size(), kParallelGrain, [&](size_t begin, size_t end) {
-    for (size_t k = begin; k < end; ++k) {
-      if (k + kRestrictAhead < end)
-        prefetch_bytes(&finer.couplings[size_t(level.coupling_parent[k + kRestrictAhead])],
-                       sizeof(RigidSystem::Coupling));
-      if (k + kRestrictAhead / 2 < end) {
-        const RigidSystem::Coupling& soon =
-            finer.couplings[size_t(level.coupling_parent[k + kRestrictAhead / 2])];
-        prefetch_line(&finer_state[size_t(soon.body[0])]);
-        prefetch_line(&finer_state[size_t(soon.body[1])]);
-      }
-      const RigidSystem::Coupling& fc = finer.couplings[level.coupling_parent[k]];
-      RigidSystem::Coupling& c = sys.couplings[k];
-      for (int s = 0; s < 2; ++s) {
-        const BodyState& st = finer_state[fc.body[s]];
-        c.local[s].mean =
-            st.rotation * fc.local[s].mean + st.position - sys.bodies[c.body[s]].rest_center;
-        c.local[s].du = st.rotation * fc.local[s].du;
-        c.local[s].dv = st.rotation * fc.local[s].dv;
-        c.local[s].duv = st.rotation * fc.local[s].duv;
-      }
-      if (swept) c.update_cross();  // only local matching reads the cross moments
+  // A finer coupling's side as this level sees it: in world orientation about the cluster's
+  // centre.
+  auto restricted = [&](const RigidSystem::Coupling& fc, int side, int cluster) {
+    const BodyState& st = finer_state[size_t(fc.body[side])];
+    const PatchModes& m = fc.local[side];
+    return PatchModes{st.rotation * m.mean + st.position - sys.bodies[size_t(cluster)].rest_center,
+                      st.rotation * m.du, st.rotation * m.dv, st.rotation * m.duv};
+  };
+  auto fetch_ahead = [&](size_t k, size_t end, const std::vector<int>& parent) {
+    if (k + kRestrictAhead < end)
+      prefetch_bytes(&finer.couplings[size_t(parent[k + kRestrictAhead])],
+                     sizeof(RigidSystem::Coupling));
+    if (k + kRestrictAhead / 2 < end) {
+      const RigidSystem::Coupling& soon = finer.couplings[size_t(parent[k + kRestrictAhead / 2])];
+      prefetch_line(&finer_state[size_t(soon.body[0])]);
+      prefetch_line(&finer_state[size_t(soon.body[1])]);
     }
-  });
+  };
+  if (swept) {
+    std::vector<OrientedCoupling>* merged =
+        level.merged_slot.empty() ? nullptr : &levels_.back()->merged;
+    parallel_chunks(sys.couplings.size(), kParallelGrain, [&](size_t begin, size_t end) {
+      for (size_t k = begin; k < end; ++k) {
+        fetch_ahead(k, end, level.coupling_parent);
+        const RigidSystem::Coupling& fc = finer.couplings[size_t(level.coupling_parent[k])];
+        RigidSystem::Coupling& c = sys.couplings[k];
+        for (int s = 0; s < 2; ++s) c.local[s] = restricted(fc, s, c.body[s]);
+        c.update_cross();  // local matching reads the cross moments
+        if (merged && level.merged_slot[k] >= 0) {
+          const int slot = level.merged_slot[k];
+          (*merged)[size_t(slot / 2)] = OrientedCoupling::of(c, slot % 2 == 1);
+        }
+      }
+    });
+  } else {
+    // Each pair's finer couplings summed into its one coupling; the constants by which their
+    // energies differ make the level's internal energy (chunks fixed by the size, summed in
+    // order: the same bits on any number of threads).
+    sys.internal_energy = parallel_sum(
+        sys.couplings.size(), kParallelGrain / 4, 0.0, [&](size_t begin, size_t end) {
+          double shortfall = 0.0;
+          const size_t last = size_t(level.merged_begin[end]);
+          for (size_t k = begin; k < end; ++k) {
+            RigidSystem::Coupling& c = sys.couplings[k];
+            const Vec3& center0 = sys.bodies[size_t(c.body[0])].rest_center;
+            const Vec3& center1 = sys.bodies[size_t(c.body[1])].rest_center;
+            CouplingMoments moments;
+            moments.trace = level.merged_trace[k];
+            for (int i = level.merged_begin[k]; i < level.merged_begin[k + 1]; ++i) {
+              if (size_t(i) + kRestrictAhead < last) {
+                const OrientedCoupling& soon = level.merged[size_t(i) + kRestrictAhead];
+                prefetch_line(&finer_state[size_t(soon.own)]);
+                prefetch_line(&finer_state[size_t(soon.other)]);
+              }
+              const OrientedCoupling& m = level.merged[size_t(i)];
+              const BodyState& own = finer_state[size_t(m.own)];
+              const BodyState& other = finer_state[size_t(m.other)];
+              moments.add_moved(m, own.rotation, own.position - center0, other.rotation,
+                                other.position - center1);
+            }
+            shortfall += moments.write(c);
+          }
+          return shortfall;
+        });
+  }
   sys.springs.resize(finer.springs.size());
   for (size_t k = 0; k < finer.springs.size(); ++k) {
     const RigidSystem::Spring& fs = finer.springs[k];
