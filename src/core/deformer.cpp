@@ -410,6 +410,9 @@ std::optional<double> Deformer::guarded_iterate(const SolveOptions& options, dou
 std::optional<double> Deformer::iterate(const SolveOptions& options, double e,
                                         SolveReport& report) {
   make_solver(options);
+  // Accelerated cycles take their input to be the state their last cycle left.
+  if (options.method != SolveMethod::Hierarchical && hierarchical_)
+    hierarchical_->restart_acceleration();
   if (options.method == SolveMethod::Global) {
     const GlobalStep step = global_->iterate(state_, exact_newton_);
     // No step along the Newton direction lowers the energy: a minimum to machine precision.
