@@ -8,12 +8,16 @@ namespace {
 
 constexpr double kVectorModeWeight[3] = {kModeWeightDu, kModeWeightDv, kModeWeightDuv};
 
-// c |a|^2 + c |b|^2 over the modes of one coupling, without its weight.
-double mode_trace(const PatchModes& a, const PatchModes& b) {
-  return a.mean.squaredNorm() + b.mean.squaredNorm() +
-         kModeWeightDu * (a.du.squaredNorm() + b.du.squaredNorm()) +
+// c_k |a_k|^2 + c_k |b_k|^2 over the vector modes of one coupling, without its weight.
+double vector_trace(const PatchModes& a, const PatchModes& b) {
+  return kModeWeightDu * (a.du.squaredNorm() + b.du.squaredNorm()) +
          kModeWeightDv * (a.dv.squaredNorm() + b.dv.squaredNorm()) +
          kModeWeightDuv * (a.duv.squaredNorm() + b.duv.squaredNorm());
+}
+
+// The same over all modes, the means too.
+double mode_trace(const PatchModes& a, const PatchModes& b) {
+  return a.mean.squaredNorm() + b.mean.squaredNorm() + vector_trace(a, b);
 }
 
 Vec3& vector_mode(PatchModes& m, int k) { return k == 0 ? m.du : k == 1 ? m.dv : m.duv; }
@@ -54,11 +58,7 @@ OrientedCoupling OrientedCoupling::of(const RigidSystem::Coupling& c, bool turne
 }
 
 double vector_mode_trace(const RigidSystem::Coupling& c) {
-  const PatchModes& a = c.local[0];
-  const PatchModes& b = c.local[1];
-  return c.weight * (kModeWeightDu * (a.du.squaredNorm() + b.du.squaredNorm()) +
-                     kModeWeightDv * (a.dv.squaredNorm() + b.dv.squaredNorm()) +
-                     kModeWeightDuv * (a.duv.squaredNorm() + b.duv.squaredNorm()));
+  return c.weight * vector_trace(c.local[0], c.local[1]);
 }
 
 double CouplingMoments::write(RigidSystem::Coupling& out) const {

@@ -288,33 +288,29 @@ void HierarchicalSolver::restrict_level(Level& level, const RigidSystem& finer,
       level.correction[c] = {Mat3::Identity(), body.rest_center};
     }
   });
-  // A finer coupling's side as this level sees it: in world orientation about the cluster's
-  // centre.
-  auto restricted = [&](const RigidSystem::Coupling& fc, int side, int cluster) {
-    const BodyState& st = finer_state[size_t(fc.body[side])];
-    const PatchModes& m = fc.local[side];
-    return PatchModes{st.rotation * m.mean + st.position - sys.bodies[size_t(cluster)].rest_center,
-                      st.rotation * m.du, st.rotation * m.dv, st.rotation * m.duv};
-  };
-  auto fetch_ahead = [&](size_t k, size_t end, const std::vector<int>& parent) {
-    if (k + kRestrictAhead < end)
-      prefetch_bytes(&finer.couplings[size_t(parent[k + kRestrictAhead])],
-                     sizeof(RigidSystem::Coupling));
-    if (k + kRestrictAhead / 2 < end) {
-      const RigidSystem::Coupling& soon = finer.couplings[size_t(parent[k + kRestrictAhead / 2])];
-      prefetch_line(&finer_state[size_t(soon.body[0])]);
-      prefetch_line(&finer_state[size_t(soon.body[1])]);
-    }
-  };
   if (swept) {
     std::vector<OrientedCoupling>* merged =
         level.merged_slot.empty() ? nullptr : &levels_.back()->merged;
     parallel_chunks(sys.couplings.size(), kParallelGrain, [&](size_t begin, size_t end) {
       for (size_t k = begin; k < end; ++k) {
-        fetch_ahead(k, end, level.coupling_parent);
+        if (k + kRestrictAhead < end)
+          prefetch_bytes(&finer.couplings[size_t(level.coupling_parent[k + kRestrictAhead])],
+                         sizeof(RigidSystem::Coupling));
+        if (k + kRestrictAhead / 2 < end) {
+          const RigidSystem::Coupling& soon =
+              finer.couplings[size_t(level.coupling_parent[k + kRestrictAhead / 2])];
+          prefetch_line(&finer_state[size_t(soon.body[0])]);
+          prefetch_line(&finer_state[size_t(soon.body[1])]);
+        }
         const RigidSystem::Coupling& fc = finer.couplings[size_t(level.coupling_parent[k])];
         RigidSystem::Coupling& c = sys.couplings[k];
-        for (int s = 0; s < 2; ++s) c.local[s] = restricted(fc, s, c.body[s]);
+        // Each side in world orientation about its cluster's centre.
+        for (int s = 0; s < 2; ++s) {
+          const BodyState& st = finer_state[size_t(fc.body[s])];
+          const PatchModes& m = fc.local[s];
+          c.local[s] = {st.rotation * m.mean + st.position - sys.bodies[size_t(c.body[s])].rest_center,
+                        st.rotation * m.du, st.rotation * m.dv, st.rotation * m.duv};
+        }
         c.update_cross();  // local matching reads the cross moments
         if (merged && level.merged_slot[k] >= 0) {
           const int slot = level.merged_slot[k];
