@@ -373,8 +373,8 @@ void RigidMultigrid::sweep(const Level& level, const BlockVector& rhs, BlockVect
         if (i + kPrefetchRows < m)
           prefetch_row(a, level.diag_inverse,
                        part[forward ? i + kPrefetchRows : m - 1 - kPrefetchRows - i]);
-        x[size_t(b)] =
-            level.diag_inverse[size_t(b)].cast<double>() * (rhs[size_t(b)] - a.off_product(b, x));
+        const Vec6 off = forward ? a.off_product(b, x) : a.off_product_descending(b, x);
+        x[size_t(b)] = level.diag_inverse[size_t(b)].cast<double>() * (rhs[size_t(b)] - off);
       }
     });
   }
