@@ -166,6 +166,9 @@ HierarchicalSolver::HierarchicalSolver(const RigidSystem& fine, const Hierarchic
     for (int c = 0; c < n_clusters; ++c) sys.bodies[c].kind = kinds[c];
     std::vector<int> coupling_fine;
     if (l + 1 < hierarchy.coarse_levels()) {
+      sys.couplings.reserve(finer->couplings.size());
+      level->coupling_parent.reserve(finer->couplings.size());
+      coupling_fine.reserve(finer->couplings.size());
       for (size_t k = 0; k < finer->couplings.size(); ++k) {
         const auto& fc = fine.couplings[finer_coupling_fine[k]];
         const int a = cluster_of[fc.body[0]], b = cluster_of[fc.body[1]];

@@ -181,6 +181,7 @@ void build_joint_slots(SweepPlan& plan, const RigidSystem& system) {
   plan.joint_begin.assign(n + 1, 0);
   plan.joint_slot.resize(system.body_couplings.size());
   plan.joints.clear();
+  plan.joints.reserve(system.body_couplings.size());  // at most one per coupling side
   for (int b = 0; b < n; ++b) {
     const int first = plan.joint_begin[b] = int(plan.joints.size());
     for (int k = system.coupling_begin[b]; k < system.coupling_begin[b + 1]; ++k) {

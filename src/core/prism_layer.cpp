@@ -108,6 +108,7 @@ PrismLayer build_prism_layer(const Mesh& mesh, const PrismParameters& params) {
     return -1;
   };
 
+  layer.joints.reserve(mesh.n_edges());  // one per interior edge
   for (auto e : mesh.edges()) {
     if (e.is_boundary()) continue;
     auto h = e.h0();

@@ -104,6 +104,7 @@ RigidSystem build_rigid_system(const PrismLayer& layer, const std::vector<int>& 
     body.metric_pinned += vectors;
   }
 
+  sys.couplings.reserve(layer.joints.size());  // at most one per joint (a coupling is 280 bytes)
   for (const Joint& j : layer.joints) {
     const int b0 = face_body[j.face[0]], b1 = face_body[j.face[1]];
     if (b0 == b1) {
