@@ -82,10 +82,11 @@ RigidSystem build_rigid_system(const PrismLayer& layer, const std::vector<int>& 
   }
 
   // Projection metric from every side patch of every prism of the body.
+  std::vector<PatchModes> sides;  // of one body; kept across bodies, not allocated per body
   for (int b = 0; b < n_bodies; ++b) {
     RigidSystem::Body& body = sys.bodies[b];
     Vec3 sum = Vec3::Zero();
-    std::vector<PatchModes> sides;
+    sides.clear();
     for (int f : body.faces)
       for (int k = 0; k < layer.degree(f); ++k)
         sides.push_back(relative_to(patch_modes(layer.side_patch(f, k)), body.rest_center));
