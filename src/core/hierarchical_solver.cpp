@@ -4,7 +4,6 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
-#include <unordered_map>
 
 #include "prefetch.h"
 #include "primo/block_matrix.h"
@@ -77,32 +76,30 @@ void HierarchicalSolver::merge_coupled_pairs(Level& level, Level* finer_level,
                                              const RigidSystem& fine,
                                              const std::vector<int>& finer_coupling_fine,
                                              const std::vector<int>& cluster_of) {
-  std::unordered_map<uint64_t, int> pair_index;
-  std::vector<std::vector<int>> members;  // finer coupling k as 2k, or 2k + 1 when turned
-  RigidSystem& sys = level.system;
-  for (size_t k = 0; k < finer_coupling_fine.size(); ++k) {
+  // Each finer coupling as a pair of clusters; pairs numbered in order of first appearance.
+  std::vector<std::pair<int, int>> edges(finer_coupling_fine.size());
+  for (size_t k = 0; k < edges.size(); ++k) {
     const auto& fc = fine.couplings[size_t(finer_coupling_fine[k])];
-    const int a = cluster_of[size_t(fc.body[0])], b = cluster_of[size_t(fc.body[1])];
-    if (a == b) continue;
-    const uint64_t key = (uint64_t(std::min(a, b)) << 32) | uint64_t(std::max(a, b));
-    const auto [it, added] = pair_index.emplace(key, int(members.size()));
-    if (added) {
-      RigidSystem::Coupling c = fc;
-      c.body[0] = a;
-      c.body[1] = b;
-      sys.couplings.push_back(c);
-      members.emplace_back();
-    }
-    const bool turned = sys.couplings[size_t(it->second)].body[0] != a;
-    members[size_t(it->second)].push_back(2 * int(k) + int(turned));
+    edges[k] = {cluster_of[size_t(fc.body[0])], cluster_of[size_t(fc.body[1])]};
   }
+  const PairNumbering numbering = number_pairs(edges);
+  const Groups members = group_by(numbering.pair_of, int(numbering.pairs.size()));
+  RigidSystem& sys = level.system;
+  sys.couplings.reserve(numbering.pairs.size());
   level.merged_begin.assign(1, 0);
-  level.merged_trace.assign(members.size(), 0.0);
+  level.merged_trace.assign(numbering.pairs.size(), 0.0);
+  level.merged.reserve(members.items.size());
   if (finer_level) finer_level->merged_slot.assign(finer_coupling_fine.size(), -1);
-  for (size_t p = 0; p < members.size(); ++p) {
-    for (const int m : members[p]) {
-      const size_t k = size_t(m / 2);
-      const bool turned = m % 2 == 1;
+  for (size_t p = 0; p < numbering.pairs.size(); ++p) {
+    // Oriented as the pair's first finer coupling.
+    const size_t first = size_t(members.items[size_t(members.begin[p])]);
+    RigidSystem::Coupling c = fine.couplings[size_t(finer_coupling_fine[first])];
+    c.body[0] = edges[first].first;
+    c.body[1] = edges[first].second;
+    sys.couplings.push_back(c);
+    for (int i = members.begin[p]; i < members.begin[p + 1]; ++i) {
+      const size_t k = size_t(members.items[size_t(i)]);
+      const bool turned = edges[k].first != c.body[0];
       // A finer coupling's vector modes are its fine coupling's, turned.
       const RigidSystem::Coupling& fc = fine.couplings[size_t(finer_coupling_fine[k])];
       level.merged_trace[p] += vector_mode_trace(fc);
