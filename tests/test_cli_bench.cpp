@@ -181,6 +181,7 @@ TEST(BenchCli, DragOnlyAndSolverSettings) {
   const CommandResult r = run_primo(
       "bench drag " + primo::test::source_path("assets/scenarios/bench/spot-reach.json") +
       " --frames 3 --drag-only --fine-sweeps 3 --coarse-iterations 2 --coarse-factor-reuse 0"
+      " --settle-factor-reuse 20"
       " --json " + json);
   ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
   const nlohmann::json d = read_json(json);
@@ -193,6 +194,7 @@ TEST(BenchCli, DragOnlyAndSolverSettings) {
   EXPECT_EQ(d["hierarchical_settings"]["fine_sweeps"].get<int>(), 3);
   EXPECT_EQ(d["hierarchical_settings"]["coarse_iterations"].get<int>(), 2);
   EXPECT_EQ(d["hierarchical_settings"]["coarse_factor_reuse"].get<int>(), 0);
+  EXPECT_EQ(d["hierarchical_settings"]["settle_factor_reuse"].get<int>(), 20);
   EXPECT_FALSE(d["hierarchical_settings"]["core_defaults"].get<bool>());
   // Two coarse Newton iterations without reuse, so at least two factorizations, per frame.
   EXPECT_GE(d["profile"]["per_frame_ms"]["factorizations"].get<double>(), 2.0);

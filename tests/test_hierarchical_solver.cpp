@@ -6,6 +6,7 @@
 
 #include <Eigen/Geometry>
 #include <iostream>
+#include <tuple>
 #include <random>
 #include <set>
 
@@ -570,6 +571,59 @@ TEST(HierarchicalSolver, DragsRefreshCoarseFactorsInTheBackgroundReproducibly) {
   EXPECT_LT(on.energy, rf.energy * (1 + 1e-6));
   EXPECT_LT(max_distance(first.vertex_positions(), flat.vertex_positions()),
             1e-4 * bounding_box_diagonal(s.mesh));
+}
+
+// A settle that starts near the minimum (after a drag that followed the hand) keeps a coarse
+// factor for HierarchicalOptions::settle_factor_reuse steps; one from afar (a jump) for
+// coarse_factor_reuse. Either way it ends at the flat minimum.
+TEST(HierarchicalSolver, ASettleAfterADragKeepsItsCoarseFactorLongerAndTheMinimum) {
+  PosedMesh s = posed_spot();
+  s.handles[1].fix = Fix::All;
+  const Vec3 offset = s.handles[1].transform.translation;
+  auto at = [&](double t) {
+    return make_rigid_transform(t * offset, Vec3::UnitX(), 30.0 * t, Vec3(0, 0.2, 0.95));
+  };
+  auto settle_after_drag = [&](int settle_reuse, int frames) {
+    SolveOptions frame = hierarchical(1, 0.0, HierarchyOptions{}.coarsest_max_bodies);
+    frame.hierarchical.settle_factor_reuse = settle_reuse;
+    frame.hierarchical.coarse_factor_reuse = 0;  // from afar: a fresh factor every step
+    frame.hierarchical.newton_krylov_above = 0.0;  // cycles throughout, from afar too
+    auto d = std::make_unique<Deformer>(s.mesh, PrismParameters{}, s.handles);
+    for (int k = 1; k <= frames; ++k) {
+      d->set_handle_transform(1, at(double(k) / frames));
+      d->solve(frame);
+    }
+    const int before = d->hierarchical_solver()->coarse_solver()->timings().factorizations;
+    SolveOptions on = frame;
+    on.max_iterations = 400;
+    on.tolerance = 1e-10;
+    const SolveReport r = d->solve(on);
+    EXPECT_TRUE(r.converged);
+    const int made = d->hierarchical_solver()->coarse_solver()->timings().factorizations - before;
+    return std::make_tuple(std::move(d), r.iterations, made);
+  };
+  s.handles[1].transform = at(1.0);
+  Deformer flat(s.mesh, PrismParameters{}, s.handles);
+  SolveOptions exact;
+  exact.tolerance = 1e-12;
+  const SolveReport rf = flat.solve(exact);
+  const double diagonal = bounding_box_diagonal(s.mesh);
+  const auto [kept, kept_cycles, kept_made] = settle_after_drag(1000, 40);
+  const auto [fresh, fresh_cycles, fresh_made] = settle_after_drag(0, 40);
+  const auto [jumped, jump_cycles, jump_made] = settle_after_drag(1000, 1);
+  std::cout << "[ metric   ] spot, settle after a 40-frame drag: " << kept_cycles << " cycles, "
+            << kept_made << " coarse factorizations with the factor kept, " << fresh_cycles
+            << " cycles, " << fresh_made << " factorizations with fresh factors; after a jump "
+            << jump_cycles << " cycles, " << jump_made << " factorizations\n";
+  // The settle's first cycle still counts as the drag's (which factorizes every step here), and
+  // a kept factor whose step fails to lower the energy is refreshed: a few, not one a cycle.
+  EXPECT_LE(kept_made * 4, fresh_made);
+  EXPECT_GE(fresh_made, fresh_cycles - 3);
+  EXPECT_GE(jump_made, jump_cycles - 3);  // from afar: coarse_factor_reuse
+  for (const Deformer* d : {kept.get(), fresh.get(), jumped.get()}) {
+    EXPECT_LT(d->energy(), rf.energy * (1 + 1e-6));
+    EXPECT_LT(max_distance(d->vertex_positions(), flat.vertex_positions()), 1e-4 * diagonal);
+  }
 }
 
 TEST(HierarchicalSolver, ShowsTheCoarseCorrectionOncePerCycleWithoutChangingTheResult) {

@@ -47,6 +47,15 @@ struct HierarchicalOptions {
   // Coarse Newton steps may reuse one numeric factorization this many times (modified
   // Newton; the coarse matrix changes little between cycles). 0: factorize every step.
   int coarse_factor_reuse = 16;
+  // The same once a settle has started near the minimum (its first cycle at fixed targets
+  // lowered the energy by at most 1e-2 of it: a drag that followed the hand; after the drag
+  // benchmark's drags 1.3e-5 to 1e-4, from rest 0.1 to 0.6). The coarse
+  // matrix hardly changes there: at 240k faces the settle after the drag benchmark's drag
+  // made its three refactorizations (0.54 s of 2.9 s) with 16 and none with 48, in the same
+  // 24 cycles; the armadillo's took 19 cycles instead of 14 but less time, the koala's 35
+  // instead of 34 (docs/performance.md, "Ninth session"). Far from the minimum fresh factors
+  // pay: a full solve by cycles took 116 cycles instead of 80 with 48.
+  int settle_factor_reuse = 48;
   // During a drag (targets changed within the last 2 cycles) a spent factor is refreshed on a
   // background thread and takes over `drag_factor_lag` coarse steps later
   // (GlobalSolver::set_factor_reuse), so that no frame stops for a factorization: the
@@ -137,6 +146,7 @@ class HierarchicalSolver {
     last_decrease_ = 1.0;
     last_was_newton_ = false;
     settle_from_afar_.reset();
+    settle_start_decrease_.reset();
   }
 
   int levels() const { return int(levels_.size()) + 1; }  // including the fine level
@@ -188,6 +198,8 @@ class HierarchicalSolver {
   // Whether this settle (since the targets last moved) started far from the minimum
   // (HierarchicalOptions::newton_krylov_above); unknown until the targets have stayed put.
   std::optional<bool> settle_from_afar_;
+  // The relative decrease of the first cycle at fixed targets (the second since they moved).
+  std::optional<double> settle_start_decrease_;
   HierarchicalTimings timings_;
 };
 

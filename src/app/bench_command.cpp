@@ -147,6 +147,11 @@ Command register_bench(CLI::App& app) {
                    "Coarse Newton steps per numeric factorization, beyond the first")
       ->check(finite_range(0, 100000))
       ->group(group);
+  drag->add_option("--settle-factor-reuse", h.settle_factor_reuse,
+                   "Coarse Newton steps per numeric factorization once a settle started near "
+                   "the minimum (after a drag)")
+      ->check(finite_range(0, 100000))
+      ->group(group);
   drag->add_option("--drag-factor-reuse", h.drag_factor_reuse,
                    "During a drag: coarse Newton steps per numeric factorization, beyond the first")
       ->check(finite_range(0, 100000))

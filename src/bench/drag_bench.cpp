@@ -371,6 +371,7 @@ int run_drag_bench(const DragBenchOptions& args) {
       args.hierarchical.coarse_iterations != defaults.coarse_iterations ||
       args.hierarchical.intermediate_cycles != defaults.intermediate_cycles ||
       args.hierarchical.coarse_factor_reuse != defaults.coarse_factor_reuse ||
+      args.hierarchical.settle_factor_reuse != defaults.settle_factor_reuse ||
       args.hierarchical.drag_factor_reuse != defaults.drag_factor_reuse ||
       args.hierarchical.drag_factor_lag != defaults.drag_factor_lag ||
       args.hierarchical.intermediate_relaxation != defaults.intermediate_relaxation ||
@@ -387,6 +388,7 @@ int run_drag_bench(const DragBenchOptions& args) {
       {"coarse_iterations", args.hierarchical.coarse_iterations},
       {"intermediate_cycles", args.hierarchical.intermediate_cycles},
       {"coarse_factor_reuse", args.hierarchical.coarse_factor_reuse},
+      {"settle_factor_reuse", args.hierarchical.settle_factor_reuse},
       {"drag_factor_reuse", args.hierarchical.drag_factor_reuse},
       {"drag_factor_lag", args.hierarchical.drag_factor_lag},
       {"intermediate_relaxation", args.hierarchical.intermediate_relaxation},
@@ -407,12 +409,13 @@ int run_drag_bench(const DragBenchOptions& args) {
     }
     std::printf("           hierarchy: clusters of %d, coarsest <= %d bodies, %d fine sweeps, %d "
                 "intermediate sweeps x %d visits, %d coarse Newton iterations per cycle, a "
-                "coarse factorization reused up to %d times%s%s\n",
+                "coarse factorization reused up to %d times (%d in a settle after a drag)%s%s\n",
                 args.hierarchical.hierarchy.cluster_size,
                 args.hierarchical.hierarchy.coarsest_max_bodies,
                 args.hierarchical.sweeps_per_level, args.hierarchical.intermediate_sweeps,
                 args.hierarchical.intermediate_cycles, args.hierarchical.coarse_iterations,
-                args.hierarchical.coarse_factor_reuse, drag_refresh.c_str(),
+                args.hierarchical.coarse_factor_reuse, args.hierarchical.settle_factor_reuse,
+                drag_refresh.c_str(),
                 tuned ? " (NOT the core's defaults)" : "");
   }
   std::printf("\n");

@@ -24,6 +24,10 @@ using Clock = std::chrono::steady_clock;
 constexpr size_t kRestrictAhead = 4;
 constexpr int kMovingCycles = 2;  // cycles since the targets changed that count as a drag
 constexpr double kConfirmBelow = 1e-5;
+// A settle starts near the minimum when its first cycle at fixed targets lowered the energy by
+// at most this fraction (HierarchicalOptions::settle_factor_reuse): after the drag benchmark's
+// drags 1.3e-5 to 1e-4, from rest 0.1 to 0.6 (elephant, armadillo, koala).
+constexpr double kNearMinimumDecrease = 1e-2;
 // Automatic drag_factor_lag: the factorization's flops over this many per fine body, within
 // [2, 16] steps. Measured on two cores with the factorization sharing them with the cycles:
 // 8 steps hide a 3e8-flop factorization behind a 29k-face drag (one coarse step per frame),
@@ -382,13 +386,16 @@ void HierarchicalSolver::solve_level(int l) {
     // the foreground, where a fresh factor pays off at once.
     const int lag = drag_factor_lag();
     const bool moving = cycles_since_restart_ <= kMovingCycles && lag > 0;
-    if (moving)
-      coarse_solver_->set_factor_reuse(options_.drag_factor_reuse, lag);
-    else
-      coarse_solver_->set_factor_reuse(options_.coarse_factor_reuse, 0);
+    const bool near_minimum =
+        settle_start_decrease_ && *settle_start_decrease_ <= kNearMinimumDecrease;
+    const int reuse = moving         ? options_.drag_factor_reuse
+                      : near_minimum ? options_.settle_factor_reuse
+                                     : options_.coarse_factor_reuse;
+    coarse_solver_->set_factor_reuse(reuse, moving ? lag : 0);
+    // coarse_factor_reuse 0 makes a drag's steps factorize too.
+    const bool reusing = moving ? options_.coarse_factor_reuse > 0 : reuse > 0;
     for (int it = 0; it < options_.coarse_iterations; ++it) {
-      const GlobalStep step =
-          coarse_solver_->iterate(level.correction, coarse_exact_, options_.coarse_factor_reuse > 0);
+      const GlobalStep step = coarse_solver_->iterate(level.correction, coarse_exact_, reusing);
       coarse_exact_ = options_.exact_hessian_below > 0 && step.decreased &&
                       step.step_scale == 1.0 &&
                       step.energy_before - step.energy_after <
@@ -431,6 +438,9 @@ double HierarchicalSolver::cycle(std::vector<BodyState>& fine_state, double ener
   // next iteration has to do is confirm it, and a cycle does so at a tenth of a step's cost.
   const bool confirming = last_was_newton_ && last_decrease_ < kConfirmBelow;
   last_was_newton_ = false;
+  // The first cycle at fixed targets has run (the drag's last frame made the one before it).
+  if (cycles_since_restart_ >= kMovingCycles && !settle_start_decrease_)
+    settle_start_decrease_ = last_decrease_;
   if (settling && !settle_from_afar_)
     settle_from_afar_ =
         options_.newton_krylov_above > 0.0 && last_decrease_ > options_.newton_krylov_above;
