@@ -535,15 +535,26 @@ TEST(HierarchicalSolver, SpringsAndOrientationHandlesReachTheFlatMinimum) {
   EXPECT_GT(max_distance(no_spring.vertex_positions(), flat.vertex_positions()), 0.01 * diagonal);
 }
 
+// Spot with its head fixed in position and orientation, and the head's pose at a fraction
+// t of the drag: moved by the posed offset and turned 30 degrees about x.
+struct SpotHeadDrag {
+  PosedMesh s = posed_spot();
+  Vec3 offset;
+  SpotHeadDrag() {
+    s.handles[1].fix = Fix::All;
+    offset = s.handles[1].transform.translation;
+  }
+  RigidTransform at(double t) const {
+    return make_rigid_transform(t * offset, Vec3::UnitX(), 30.0 * t, Vec3(0, 0.2, 0.95));
+  }
+};
+
 TEST(HierarchicalSolver, DragsRefreshCoarseFactorsInTheBackgroundReproducibly) {
   // A 40-frame drag of Spot's head, one cycle per frame, done twice: the background
   // factorizations finish at different times, the results may not differ.
-  PosedMesh s = posed_spot();
-  s.handles[1].fix = Fix::All;
-  const Vec3 offset = s.handles[1].transform.translation;
-  auto at = [&](double t) {
-    return make_rigid_transform(t * offset, Vec3::UnitX(), 30.0 * t, Vec3(0, 0.2, 0.95));
-  };
+  const SpotHeadDrag head;
+  PosedMesh s = head.s;
+  auto at = [&](double t) { return head.at(t); };
   const SolveOptions frame = hierarchical(1, 0.0, HierarchyOptions{}.coarsest_max_bodies);
   auto drag = [&](Deformer& d) {
     for (int k = 1; k <= 40; ++k) {
@@ -577,12 +588,9 @@ TEST(HierarchicalSolver, DragsRefreshCoarseFactorsInTheBackgroundReproducibly) {
 // factor for HierarchicalOptions::settle_factor_reuse steps; one from afar (a jump) for
 // coarse_factor_reuse. Either way it ends at the flat minimum.
 TEST(HierarchicalSolver, ASettleAfterADragKeepsItsCoarseFactorLongerAndTheMinimum) {
-  PosedMesh s = posed_spot();
-  s.handles[1].fix = Fix::All;
-  const Vec3 offset = s.handles[1].transform.translation;
-  auto at = [&](double t) {
-    return make_rigid_transform(t * offset, Vec3::UnitX(), 30.0 * t, Vec3(0, 0.2, 0.95));
-  };
+  const SpotHeadDrag head;
+  PosedMesh s = head.s;
+  auto at = [&](double t) { return head.at(t); };
   auto settle_after_drag = [&](int settle_reuse, int frames) {
     SolveOptions frame = hierarchical(1, 0.0, HierarchyOptions{}.coarsest_max_bodies);
     frame.hierarchical.settle_factor_reuse = settle_reuse;

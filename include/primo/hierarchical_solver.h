@@ -49,12 +49,12 @@ struct HierarchicalOptions {
   int coarse_factor_reuse = 16;
   // The same once a settle has started near the minimum (its first cycle at fixed targets
   // lowered the energy by at most 1e-2 of it: a drag that followed the hand; after the drag
-  // benchmark's drags 1.3e-5 to 1e-4, from rest 0.1 to 0.6). The coarse
-  // matrix hardly changes there: at 240k faces the settle after the drag benchmark's drag
-  // made its three refactorizations (0.54 s of 2.9 s) with 16 and none with 48, in the same
-  // 24 cycles; the armadillo's took 19 cycles instead of 14 but less time, the koala's 35
-  // instead of 34 (docs/performance.md, "Ninth session"). Far from the minimum fresh factors
-  // pay: a full solve by cycles took 116 cycles instead of 80 with 48.
+  // benchmark's drags 1.3e-5 to 1e-4, from rest 0.1 to 0.6). The coarse matrix hardly
+  // changes there: at 240k faces the settle after the drag benchmark's drag spent 0.34-0.53 s
+  // of its 2.6-3.2 s on refactorizations with 16, and none with 48, in the same 24 cycles;
+  // the armadillo's took 19 cycles instead of 14 but less time, the koala's 35 instead of 34
+  // (docs/performance.md, "Ninth session"). Far from the minimum fresh factors pay: a full
+  // solve by cycles took 116 cycles instead of 80 with 48.
   int settle_factor_reuse = 48;
   // During a drag (targets changed within the last 2 cycles) a spent factor is refreshed on a
   // background thread and takes over `drag_factor_lag` coarse steps later
