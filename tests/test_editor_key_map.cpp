@@ -7,6 +7,7 @@
 #include <imgui.h>
 #include <imgui_internal.h>
 
+#include <algorithm>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <set>
@@ -203,7 +204,13 @@ TEST(EditorKeys, ASettleLimitStopsALongSolveAndContinueSolvesOn) {
     std::this_thread::sleep_for(std::chrono::milliseconds(2));
   }
   ASSERT_EQ(e.solver_status().phase, SolverPhase::Stopped);
-  EXPECT_NE(e.current_message()->text.find("Stopped settling"), std::string::npos);
+  // Said when the limit stopped the worker; the worker reports Stopped some frames later, and
+  // on a loaded machine (ctest -j2) the editor's clock (0.1 s a frame here) could pass the
+  // message's 10 s on the status bar first: look for it among all messages.
+  const std::vector<Editor::Message>& said = e.messages();
+  EXPECT_TRUE(std::any_of(said.begin(), said.end(), [](const Editor::Message& m) {
+    return m.text.find("Stopped settling") != std::string::npos;
+  }));
   ASSERT_TRUE(s.settle());
   const std::vector<Vec3> stopped = e.positions();
   // Continue ends where an unlimited settle does.
