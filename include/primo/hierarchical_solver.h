@@ -104,6 +104,7 @@ struct HierarchicalTimings {
   double newton_krylov = 0.0;  // Newton-Krylov steps (all their phases)
   int newton_krylov_steps = 0;
   int newton_krylov_iterations = 0;  // their conjugate-gradient iterations
+  int newton_krylov_applications = 0;  // their preconditioner's applications
   double restrict_prolong = 0.0;
   double acceleration = 0.0;  // Anderson proposals and their energy
   double coarse = 0.0;

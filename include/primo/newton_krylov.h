@@ -10,7 +10,7 @@
 //
 // A step: the exact Hessian (the Gauss-Newton blocks plus the second-order rotation terms,
 // as global_solver.h) and gradient in the motions (v, omega) of every body; conjugate
-// gradients until the preconditioned residual fell by `forcing`; the update through the
+// gradients until an iteration adds little to the quadratic model's decrease; the update through the
 // exponential map, halved until the energy drops. Where the Hessian or its diagonal blocks
 // are not positive definite (away from a minimum) the Gauss-Newton matrix is used instead.
 // The same bits on any number of threads.
@@ -26,10 +26,14 @@ namespace primo {
 
 struct NewtonKrylovOptions {
   MultigridOptions multigrid;
-  // Conjugate gradients stop when the preconditioned residual norm fell by this factor
-  // (the Newton step's inexactness), or after `max_cg_iterations`. At 240k faces 0.15 settled
-  // a drag in two steps of 5 and 4 iterations, where 0.05 took 7 and 5 (docs/performance.md).
-  double forcing = 0.15;
+  // Conjugate gradients stop after an iteration that lowered the step's quadratic model by at
+  // most this fraction of what all its iterations lowered it (each iteration's decrease is
+  // alpha r.z / 2, known without another preconditioner application; Arioli's estimate of
+  // the error in the energy norm), or after `max_cg_iterations`. A test on the preconditioned
+  // residual r.z, as before, applied the preconditioner once more per step only to decide
+  // to stop: 47 applications for 39 iterations in the 240k full solve, 34 for 34 with this
+  // test at 0.1, the same steps (docs/performance.md, tenth session).
+  double stop_ratio = 0.1;
   int max_cg_iterations = 40;
   // The largest turn (radians) a body may make in one step: conjugate gradients stop where
   // their iterate would turn a body further, on that bound (Steihaug's truncated conjugate
@@ -47,6 +51,10 @@ struct NewtonKrylovStep {
   double energy_after = 0.0;
   double step_scale = 0.0;  // accepted fraction of the step (0: none lowered the energy)
   int cg_iterations = 0;
+  int preconditioner_applications = 0;
+  // The quadratic model's decrease by each conjugate-gradient iteration of the accepted
+  // solve, in order (alpha r.z / 2, in the units of E / 2).
+  std::vector<double> model_decreases;
   double largest_turn = 0.0;  // of any body in the full step (before step halving), radians
   bool turn_bounded = false;  // conjugate gradients stopped on NewtonKrylovOptions::max_turn
   bool exact_hessian = false;

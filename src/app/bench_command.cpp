@@ -134,9 +134,9 @@ Command register_bench(CLI::App& app) {
                    "a cycle still lowers the energy by more than this fraction (0: never)")
       ->check(finite_range(0.0, 1.0))
       ->group(group);
-  drag->add_option("--krylov-forcing", h.newton_krylov.forcing,
-                   "Conjugate gradients of a Newton-Krylov step stop when the preconditioned "
-                   "residual fell by this factor")
+  drag->add_option("--krylov-stop-ratio", h.newton_krylov.stop_ratio,
+                   "Conjugate gradients of a Newton-Krylov step stop after an iteration that "
+                   "lowered the quadratic model by at most this fraction of the step's total")
       ->check(finite_range(1e-12, 0.99))
       ->group(group);
   drag->add_option("--krylov-max-turn", h.newton_krylov.max_turn,

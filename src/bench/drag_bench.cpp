@@ -378,7 +378,7 @@ int run_drag_bench(const DragBenchOptions& args) {
       args.hierarchical.acceleration_history != defaults.acceleration_history ||
       args.hierarchical.newton_krylov_below != defaults.newton_krylov_below ||
       args.hierarchical.newton_krylov_above != defaults.newton_krylov_above ||
-      args.hierarchical.newton_krylov.forcing != defaults.newton_krylov.forcing ||
+      args.hierarchical.newton_krylov.stop_ratio != defaults.newton_krylov.stop_ratio ||
       args.hierarchical.newton_krylov.max_turn != defaults.newton_krylov.max_turn;
   const nlohmann::json settings = {
       {"cluster_size", args.hierarchical.hierarchy.cluster_size},
@@ -395,7 +395,7 @@ int run_drag_bench(const DragBenchOptions& args) {
       {"acceleration_history", args.hierarchical.acceleration_history},
       {"newton_krylov_below", args.hierarchical.newton_krylov_below},
       {"newton_krylov_above", args.hierarchical.newton_krylov_above},
-      {"krylov_forcing", args.hierarchical.newton_krylov.forcing},
+      {"krylov_stop_ratio", args.hierarchical.newton_krylov.stop_ratio},
       {"krylov_max_turn", args.hierarchical.newton_krylov.max_turn},
       {"core_defaults", !tuned}};
   if (method == SolveMethod::Hierarchical) {
@@ -530,9 +530,11 @@ int run_drag_bench(const DragBenchOptions& args) {
   if (later > 0) print_breakdown_row("per frame, 2..N", drag.later_frames.per(later), method);
   if (!args.drag_only) print_breakdown_row("converge (total)", drag.converge_profile, method);
   if (!args.drag_only && drag.converge_profile.newton_krylov_steps > 0)
-    std::printf("  (converge: %.0f Newton-Krylov steps, %.0f conjugate-gradient iterations)\n",
+    std::printf("  (converge: %.0f Newton-Krylov steps, %.0f conjugate-gradient iterations, %.0f "
+                "preconditioner applications)\n",
                 drag.converge_profile.newton_krylov_steps,
-                drag.converge_profile.newton_krylov_iterations);
+                drag.converge_profile.newton_krylov_iterations,
+                drag.converge_profile.newton_krylov_applications);
   std::printf("  (one energy evaluation: %.2f ms)\n", 1e3 * drag.energy_evaluation_seconds);
   std::printf("  (factorizations during the drag: %d in the foreground, %d on a background thread "
               "taking %.0f ms there, not counted above)\n\n",
@@ -564,8 +566,10 @@ int run_drag_bench(const DragBenchOptions& args) {
                 full.report.stop_reason.c_str());
     print_breakdown_row("full solve (total)", full.profile, method);
     if (full.profile.newton_krylov_steps > 0)
-      std::printf("  (%.0f Newton-Krylov steps, %.0f conjugate-gradient iterations)\n",
-                  full.profile.newton_krylov_steps, full.profile.newton_krylov_iterations);
+      std::printf("  (%.0f Newton-Krylov steps, %.0f conjugate-gradient iterations, %.0f "
+                  "preconditioner applications)\n",
+                  full.profile.newton_krylov_steps, full.profile.newton_krylov_iterations,
+                  full.profile.newton_krylov_applications);
     std::printf("\n");
     out["full_solve"] = {{"setup_seconds", full.setup_seconds},
                          {"hierarchy_build_seconds", full.hierarchy_build_seconds},

@@ -17,6 +17,7 @@ SolverClock SolverClock::read(const Deformer& deformer) {
     c.newton_krylov = h->timings().newton_krylov;
     c.newton_krylov_steps = h->timings().newton_krylov_steps;
     c.newton_krylov_iterations = h->timings().newton_krylov_iterations;
+    c.newton_krylov_applications = h->timings().newton_krylov_applications;
     c.cycles = h->timings().cycles;
     if (const GlobalSolver* g = h->coarse_solver()) c.newton = g->timings();
   } else if (const GlobalSolver* g = deformer.global_solver()) {
@@ -40,6 +41,8 @@ void Breakdown::add_solver(const SolverClock& before, const SolverClock& after) 
   newton_krylov += after.newton_krylov - before.newton_krylov;
   newton_krylov_steps += after.newton_krylov_steps - before.newton_krylov_steps;
   newton_krylov_iterations += after.newton_krylov_iterations - before.newton_krylov_iterations;
+  newton_krylov_applications +=
+      after.newton_krylov_applications - before.newton_krylov_applications;
   assembly += after.newton.assembly - before.newton.assembly;
   factorization += after.newton.factorization - before.newton.factorization;
   solve += after.newton.solve - before.newton.solve;
@@ -53,7 +56,8 @@ Breakdown Breakdown::per(int n) const {
   for (double* x :
        {&b.total, &b.set_targets, &b.restrict_prolong, &b.coarse, &b.assembly, &b.factorization,
         &b.solve, &b.line_search, &b.sweeps, &b.acceleration, &b.newton_krylov,
-        &b.newton_krylov_steps, &b.newton_krylov_iterations, &b.vertex_update, &b.factorizations})
+        &b.newton_krylov_steps, &b.newton_krylov_iterations, &b.newton_krylov_applications,
+        &b.vertex_update, &b.factorizations})
     *x *= k;
   return b;
 }
@@ -72,6 +76,7 @@ nlohmann::json Breakdown::to_json_ms() const {
           {"newton_krylov", 1e3 * newton_krylov},
           {"newton_krylov_steps", newton_krylov_steps},
           {"newton_krylov_iterations", newton_krylov_iterations},
+          {"newton_krylov_applications", newton_krylov_applications},
           {"vertex_update", 1e3 * vertex_update},
           {"other", 1e3 * other()},
           {"factorizations", factorizations}};

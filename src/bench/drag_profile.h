@@ -18,6 +18,7 @@ struct SolverClock {
   double newton_krylov = 0.0;
   int newton_krylov_steps = 0;
   int newton_krylov_iterations = 0;
+  int newton_krylov_applications = 0;
   int cycles = 0;
   GlobalSolverTimings newton;  // the coarse level's solver (hierarchical) or the global solver
 
@@ -41,6 +42,7 @@ struct Breakdown {
   double newton_krylov = 0.0;        // Newton-Krylov steps, all their phases
   double newton_krylov_steps = 0.0;  // count
   double newton_krylov_iterations = 0.0;  // count of their conjugate-gradient iterations
+  double newton_krylov_applications = 0.0;  // count of their preconditioner's applications
   double vertex_update = 0.0;
   double factorizations = 0.0;  // count (per frame after per())
 

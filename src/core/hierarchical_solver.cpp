@@ -459,6 +459,7 @@ double HierarchicalSolver::cycle(std::vector<BodyState>& fine_state, double ener
     }
     ++timings_.newton_krylov_steps;
     timings_.newton_krylov_iterations += step.cg_iterations;
+    timings_.newton_krylov_applications += step.preconditioner_applications;
     ++cycles_since_restart_;
     if (step.decreased) {
       acceleration_.reset();  // the cycles' history is no longer that of this state

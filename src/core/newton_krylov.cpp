@@ -58,8 +58,10 @@ struct NewtonKrylov::Impl {
   // first direction already has non-positive curvature (H is not positive definite there), or
   // kInterrupted. `bounded` tells whether they stopped on the largest turn.
   static constexpr int kInterrupted = -2;
-  int conjugate_gradients(bool& bounded, const std::function<bool()>& interrupt) {
+  int conjugate_gradients(bool& bounded, NewtonKrylovStep& step,
+                          const std::function<bool()>& interrupt) {
     bounded = false;
+    step.model_decreases.clear();
     const BlockMatrix& h = hessian.matrix();
     const BlockVector& gradient = hessian.gradient();
     const size_t n = gradient.size();
@@ -67,10 +69,11 @@ struct NewtonKrylov::Impl {
     r.resize(n);
     for (size_t b = 0; b < n; ++b) r[b] = -gradient[b];
     multigrid.apply(r, z);
+    ++step.preconditioner_applications;
     p = z;
     double rz = dot(r, z);
     if (!(rz > 0.0)) return 0;
-    const double stop = options.forcing * options.forcing * rz;
+    double model_decrease = 0.0;
     int it = 0;
     while (it < options.max_cg_iterations) {
       if (interrupt && interrupt()) return kInterrupted;
@@ -91,9 +94,17 @@ struct NewtonKrylov::Impl {
       });
       ++it;
       if (bounded) break;
+      // The model falls by alpha r.z / 2 along p (exact for conjugate directions; the
+      // K-cycle's slight nonlinearity makes it an estimate), and the error left in the energy
+      // norm is about the sum of the decreases still to come, which fall geometrically.
+      const double decrease = 0.5 * alpha * rz;
+      model_decrease += decrease;
+      step.model_decreases.push_back(decrease);
+      if (decrease <= options.stop_ratio * model_decrease) break;
       multigrid.apply(r, z);
+      ++step.preconditioner_applications;
       const double rz_next = dot(r, z);
-      if (rz_next <= stop) break;
+      if (!(rz_next > 0.0)) break;
       // Flexible (Polak-Ribiere) beta = z' . (r' - r) / (z . r), with r' - r = -alpha q: the
       // K-cycle is not quite a fixed linear map, and Fletcher-Reeves' rz'/rz assumes one.
       const double beta = -alpha * dot(z, q) / rz;
@@ -131,7 +142,7 @@ NewtonKrylovStep NewtonKrylov::iterate(std::vector<BodyState>& state, double ene
     m.hessian.assemble(state, exact);
     if (!m.multigrid.set_matrix(m.hessian.matrix(), m.position)) continue;
     bool bounded = false;
-    const int iterations = m.conjugate_gradients(bounded, interrupt);
+    const int iterations = m.conjugate_gradients(bounded, step, interrupt);
     if (iterations == Impl::kInterrupted) {
       step.interrupted = true;
       return step;
