@@ -40,6 +40,7 @@ class RigidHessian {
   std::vector<int> order_;                        // row -> body
   std::vector<int> mask_;                         // active_mask of each row's body
   std::vector<int> coupling_pair_;                // each coupling's pair (-1: none)
+  std::vector<signed char> coupling_first_side_;  // the side whose row is its pair's first
   BlockMatrix matrix_;
   BlockVector gradient_;
 };

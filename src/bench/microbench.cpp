@@ -219,6 +219,18 @@ void HessianProduct(benchmark::State& run) {
 }
 BENCHMARK(HessianProduct)->Arg(60)->Arg(4800)->Unit(benchmark::kMillisecond)->UseRealTime();
 
+// The exact Hessian's assembly at the limb's state (a Newton-Krylov step's first phase).
+void HessianAssembly(benchmark::State& run) {
+  const Limb& limb = Limb::of(int(run.range(0)));
+  LimbHessian& h = LimbHessian::of(int(run.range(0)));
+  for (auto _ : run) {
+    h.hessian.assemble(limb.state, /*second_order=*/true);
+    benchmark::ClobberMemory();
+  }
+  run.SetItemsProcessed(run.iterations() * h.hessian.matrix().size());
+}
+BENCHMARK(HessianAssembly)->Arg(60)->Arg(4800)->Unit(benchmark::kMillisecond)->UseRealTime();
+
 void MultigridCycle(benchmark::State& run) {
   LimbHessian& h = LimbHessian::of(int(run.range(0)));
   BlockVector z;

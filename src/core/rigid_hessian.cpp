@@ -4,6 +4,7 @@
 #include <numeric>
 
 #include "primo/global_solver.h"
+#include "prefetch.h"
 #include "primo/parallel.h"
 #include "rigid_blocks.h"
 
@@ -11,6 +12,7 @@ namespace primo {
 namespace {
 
 constexpr size_t kBodyGrain = kParallelGrain / 8;  // a body's blocks cost a few thousand flops
+constexpr size_t kAssemblyAhead = 2;
 
 // A body's own blocks (FeatureBlocks::add_own summed over its residuals) from sums that each
 // residual adds to: every term of them is linear in w, w y, w r, w y y^T or w r y^T. A 6x6
@@ -22,6 +24,10 @@ struct OwnSums {
   Vec3 torque = Vec3::Zero();      // sum of w y x r
   Mat3 yy = Mat3::Zero();          // sum of w y y^T
   Mat3 ry = Mat3::Zero();          // sum of w r y^T
+  // The couplings' parts of point_arm and yy in the body's own frame: sum of w l and of
+  // w l l^T over their modes l (turned into the world once per body, in blocks()).
+  Vec3 local_arm = Vec3::Zero();
+  Mat3 local_yy = Mat3::Zero();
 
   void add(const Vec3& y, const Vec3& r, double w, bool point) {
     if (point) {
@@ -34,19 +40,46 @@ struct OwnSums {
     yy.noalias() += wy * y.transpose();
     ry.noalias() += r * wy.transpose();
   }
+
+  // All four residuals of a coupling as seen from its side `own` (r = X_own - X_other), from
+  // its moments: with K = sum of w y_own y_other^T = R_own cross R_other^T and the point mode's
+  // arms p and d = x_own - x_other, sum w y_own x r = w p_own x d - sum w y_own x y_other and
+  // sum w r y_own^T = sum w y_own y_own^T - K^T + w d p_own^T. Two 3x3 products a coupling
+  // instead of eight rotated modes and four outer products each (twice as many as before, as
+  // every coupling is visited from both its bodies' rows).
+  void add_coupling(const Mat3& k, const Vec3& p_own, const Vec3& p_other, const Vec3& d,
+                    const PatchModes& own_local, double w) {
+    point_weight += w;
+    local_arm += w * own_local.mean;
+    point_pull += w * (p_own - p_other + d);
+    torque += w * p_own.cross(d) -
+              Vec3(k(1, 2) - k(2, 1), k(2, 0) - k(0, 2), k(0, 1) - k(1, 0));  // axial(K^T - K)
+    ry.noalias() += (w * d) * p_own.transpose();
+    ry -= k.transpose();
+    auto add_mode = [&](const Vec3& l, double weight) {
+      local_yy.noalias() += (weight * l) * l.transpose();
+    };
+    add_mode(own_local.mean, w);
+    add_mode(own_local.du, w * kModeWeightDu);
+    add_mode(own_local.dv, w * kModeWeightDv);
+    add_mode(own_local.duv, w * kModeWeightDuv);
+  }
+
   // h = [[W I, -[a]x], [[a]x, tr(YY) I - YY]], g = (sum w r, sum w y x r), and the
-  // second-order term s = (RY + RY^T) / 2 - tr(RY) I.
-  void blocks(Mat6& h, Vec6& g, Mat3& s) const {
+  // second-order term s = (RY + RY^T) / 2 - tr(RY) I, for the body turned by `rotation`.
+  void blocks(const Mat3& rotation, Mat6& h, Vec6& g, Mat3& s) const {
+    const Mat3 coupled_yy = rotation * local_yy * rotation.transpose();
+    const Mat3 all_yy = yy + coupled_yy, all_ry = ry + coupled_yy;
     h.setZero();
     h.block<3, 3>(0, 0).diagonal().setConstant(point_weight);
-    const Mat3 arm = cross_matrix(point_arm);
+    const Mat3 arm = cross_matrix(point_arm + rotation * local_arm);
     h.block<3, 3>(0, 3) = -arm;
     h.block<3, 3>(3, 0) = arm;
-    h.block<3, 3>(3, 3) = -yy;
-    h.block<3, 3>(3, 3).diagonal().array() += yy.trace();
+    h.block<3, 3>(3, 3) = -all_yy;
+    h.block<3, 3>(3, 3).diagonal().array() += all_yy.trace();
     g << point_pull, torque;
-    s = 0.5 * (ry + ry.transpose());
-    s.diagonal().array() -= ry.trace();
+    s = 0.5 * (all_ry + all_ry.transpose());
+    s.diagonal().array() -= all_ry.trace();
   }
 };
 
@@ -56,14 +89,6 @@ struct CrossSums {
   Vec3 arm0 = Vec3::Zero(), arm1 = Vec3::Zero();  // sums of w y_0, w y_1 over the points
   Mat3 y1y0 = Mat3::Zero();                       // sum of w y_1 y_0^T
 
-  void add(const Vec3& y0, const Vec3& y1, double w, bool point) {
-    if (point) {
-      point_weight += w;
-      arm0 += w * y0;
-      arm1 += w * y1;
-    }
-    y1y0.noalias() += (w * y1) * y0.transpose();
-  }
   Mat6 block() const {
     Mat6 h;
     h.block<3, 3>(0, 0) = -point_weight * Mat3::Identity();
@@ -98,6 +123,13 @@ RigidHessian::RigidHessian(const RigidSystem& system, std::vector<int> order)
     }
   PairNumbering numbering = number_pairs(edges);
   coupling_pair_ = std::move(numbering.pair_of);
+  coupling_first_side_.assign(system.couplings.size(), -1);
+  for (size_t ci = 0; ci < system.couplings.size(); ++ci) {
+    const int pair = coupling_pair_[ci];
+    if (pair < 0) continue;
+    const int row0 = row_of[size_t(system.couplings[ci].body[0])];
+    coupling_first_side_[ci] = numbering.pairs[size_t(pair)].first == row0 ? 0 : 1;
+  }
   matrix_.set_structure(n, std::move(numbering.pairs));
   gradient_.assign(size_t(n), Vec6::Zero());
 }
@@ -111,27 +143,37 @@ void RigidHessian::assemble(const std::vector<BodyState>& state, bool second_ord
     std::vector<std::pair<int, Mat6>> crosses;  // this row's pairs' blocks
     for (size_t row = begin; row < end; ++row) {
       const size_t b = size_t(order_[row]);
+      if (row + kAssemblyAhead < end) {
+        const size_t ahead = size_t(order_[row + kAssemblyAhead]);
+        for (int k = sys.coupling_begin[ahead]; k < sys.coupling_begin[ahead + 1]; ++k) {
+          const auto [ci, side] = sys.body_couplings[size_t(k)];
+          prefetch_bytes(&sys.couplings[size_t(ci)], sizeof(RigidSystem::Coupling));
+        }
+      }
       OwnSums own;
       crosses.clear();
       const int mask = mask_[row];
       if (mask != 0) {
+        const BodyState& own_state = state[b];
         for (int k = sys.coupling_begin[b]; k < sys.coupling_begin[b + 1]; ++k) {
           const auto [ci, side] = sys.body_couplings[size_t(k)];
           const RigidSystem::Coupling& c = sys.couplings[size_t(ci)];
+          const BodyState& other_state = state[size_t(c.body[1 - side])];
+          const Mat3 moment = own_state.rotation * c.cross_of(side) *
+                              other_state.rotation.transpose();  // sum of w y_own y_other^T
+          const Vec3 p_own = own_state.rotation * c.local[side].mean,
+                     p_other = other_state.rotation * c.local[1 - side].mean,
+                     d = own_state.position - other_state.position;
+          own.add_coupling(moment, p_own, p_other, d, c.local[side], c.weight);
+          if (coupling_first_side_[size_t(ci)] != side) continue;
           const int pair = coupling_pair_[size_t(ci)];
-          const bool first = pair >= 0 && matrix_.pairs[size_t(pair)].first == int(row);
+          // The pair's block, rows side 0's dofs (as FeatureBlocks::add_cross), then turned to
+          // this row's.
           CrossSums cross;
-          for_each_residual(c, state[size_t(c.body[0])], state[size_t(c.body[1])],
-                            [&, side = side](const Vec3& y0, const Vec3& y1, const Vec3& r,
-                                             double w, bool point) {
-                              if (side == 0)
-                                own.add(y0, r, w, point);
-                              else
-                                own.add(y1, -r, w, point);
-                              if (first) cross.add(y0, y1, w, point);
-                            });
-          if (!first) continue;
-          // Rows: this row's dofs.
+          cross.point_weight = c.weight;
+          cross.arm0 = c.weight * (side == 0 ? p_own : p_other);
+          cross.arm1 = c.weight * (side == 0 ? p_other : p_own);
+          cross.y1y0 = side == 0 ? Mat3(moment.transpose()) : moment;
           const Mat6 block = side == 0 ? cross.block() : Mat6(cross.block().transpose());
           auto known = std::find_if(crosses.begin(), crosses.end(),
                                     [&](const auto& e) { return e.first == pair; });
@@ -149,7 +191,7 @@ void RigidHessian::assemble(const std::vector<BodyState>& state, bool second_ord
       Mat6 h;
       Vec6 g;
       Mat3 s;
-      own.blocks(h, g, s);
+      own.blocks(state[b].rotation, h, g, s);
       for (int d = 0; d < 6; ++d)
         if (!(mask & (1 << d))) {
           h.row(d).setZero();
