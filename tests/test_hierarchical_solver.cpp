@@ -127,7 +127,14 @@ TEST(ClusterHierarchy, AggregatesAreConnectedAndCompact) {
       if (i + 1 < n) adjacency[v].push_back(v + 1), adjacency[v + 1].push_back(v);
       if (j + 1 < n) adjacency[v].push_back(v + n), adjacency[v + n].push_back(v);
     }
-  const std::vector<int> agg = aggregate_nodes(adjacency, position, std::vector<bool>(n * n, false), 8);
+  for (auto& list : adjacency) std::sort(list.begin(), list.end());
+  Groups rows;  // the same lists as compressed rows
+  rows.begin.push_back(0);
+  for (const auto& list : adjacency) {
+    rows.items.insert(rows.items.end(), list.begin(), list.end());
+    rows.begin.push_back(int(rows.items.size()));
+  }
+  const std::vector<int> agg = aggregate_nodes(rows, position, std::vector<bool>(n * n, false), 8);
   const int count = *std::max_element(agg.begin(), agg.end()) + 1;
   EXPECT_GT(count, n * n / 16);
   EXPECT_LT(count, n * n / 4);

@@ -12,6 +12,7 @@
 
 #include <vector>
 
+#include "primo/block_matrix.h"
 #include "primo/rigid_system.h"
 
 namespace primo {
@@ -34,8 +35,8 @@ ClusterHierarchy build_cluster_hierarchy(const RigidSystem& fine, const Hierarch
 
 // Greedy aggregation of one graph level (exposed for tests). Nodes with `locked` set stay
 // alone. Returns the aggregate of every node; aggregates are numbered from 0.
-std::vector<int> aggregate_nodes(const std::vector<std::vector<int>>& adjacency,
-                                 const std::vector<Vec3>& position,
+// `adjacency` holds each node's neighbours (group v: node v's), sorted, without repeats.
+std::vector<int> aggregate_nodes(const Groups& adjacency, const std::vector<Vec3>& position,
                                  const std::vector<bool>& locked, int target_size);
 
 }  // namespace primo

@@ -5,10 +5,13 @@
 
 namespace primo {
 
-std::vector<int> aggregate_nodes(const std::vector<std::vector<int>>& adjacency,
-                                 const std::vector<Vec3>& position,
+std::vector<int> aggregate_nodes(const Groups& adjacency, const std::vector<Vec3>& position,
                                  const std::vector<bool>& locked, int target_size) {
-  const int n = int(adjacency.size());
+  const int n = int(adjacency.begin.size()) - 1;
+  auto neighbours = [&](int v) {
+    return std::make_pair(adjacency.items.begin() + adjacency.begin[size_t(v)],
+                          adjacency.items.begin() + adjacency.begin[size_t(v) + 1]);
+  };
   std::vector<int> aggregate(n, -1);
   std::vector<int> size;
   std::vector<int> members, frontier;
@@ -24,7 +27,8 @@ std::vector<int> aggregate_nodes(const std::vector<std::vector<int>>& adjacency,
       int best = -1;
       double best_distance = std::numeric_limits<double>::infinity();
       for (int m : members)
-        for (int nb : adjacency[m]) {
+        for (auto [nb_it, nb_end] = neighbours(m); nb_it != nb_end; ++nb_it) {
+          const int nb = *nb_it;
           if (aggregate[nb] >= 0 || locked[nb]) continue;
           const double d = (position[nb] - position[seed]).squaredNorm();
           if (d < best_distance) best_distance = d, best = nb;
@@ -39,16 +43,16 @@ std::vector<int> aggregate_nodes(const std::vector<std::vector<int>>& adjacency,
   // Merge small free aggregates into their smallest free neighbouring aggregate.
   std::vector<int> merged_into(size.size());
   for (size_t a = 0; a < size.size(); ++a) merged_into[a] = int(a);
-  std::vector<std::vector<int>> nodes_of(size.size());
-  for (int v = 0; v < n; ++v) nodes_of[aggregate[v]].push_back(v);
+  const Groups nodes_of = group_by(aggregate, int(size.size()));  // each in ascending order
+  auto first_node = [&](size_t a) { return nodes_of.items[size_t(nodes_of.begin[a])]; };
   for (size_t a = 0; a < size.size(); ++a) {
-    if (2 * size[a] >= target_size || locked[nodes_of[a].front()]) continue;
+    if (2 * size[a] >= target_size || locked[size_t(first_node(a))]) continue;
     int best = -1;
-    for (int v : nodes_of[a])
-      for (int nb : adjacency[v]) {
-        int other = aggregate[nb];
+    for (int k = nodes_of.begin[a]; k < nodes_of.begin[a + 1]; ++k)
+      for (auto [nb_it, nb_end] = neighbours(nodes_of.items[size_t(k)]); nb_it != nb_end; ++nb_it) {
+        int other = aggregate[*nb_it];
         while (merged_into[other] != other) other = merged_into[other];
-        if (other == int(a) || locked[nodes_of[other].front()]) continue;
+        if (other == int(a) || locked[size_t(first_node(size_t(other)))]) continue;
         if (best < 0 || size[other] < size[best]) best = other;
       }
     if (best < 0) continue;
@@ -91,17 +95,37 @@ ClusterHierarchy build_cluster_hierarchy(const RigidSystem& fine, const Hierarch
       weight[node_of[b]] += w;
     }
     for (int v = 0; v < n_nodes; ++v) position[v] /= weight[v];
-    std::vector<std::vector<int>> adjacency(n_nodes);
+    // The nodes' neighbours, each list sorted and without repeats (as compressed rows: one
+    // small vector per node cost more than the aggregation at 180,000 bodies).
+    Groups adjacency;
+    adjacency.begin.assign(size_t(n_nodes) + 1, 0);
     for (const auto& c : fine.couplings) {
-      const int a = node_of[c.body[0]], b = node_of[c.body[1]];
+      const int a = node_of[size_t(c.body[0])], b = node_of[size_t(c.body[1])];
       if (a == b) continue;
-      adjacency[a].push_back(b);
-      adjacency[b].push_back(a);
+      ++adjacency.begin[size_t(a) + 1];
+      ++adjacency.begin[size_t(b) + 1];
     }
-    for (auto& list : adjacency) {
-      std::sort(list.begin(), list.end());
-      list.erase(std::unique(list.begin(), list.end()), list.end());
+    for (int v = 0; v < n_nodes; ++v) adjacency.begin[size_t(v) + 1] += adjacency.begin[size_t(v)];
+    adjacency.items.resize(size_t(adjacency.begin[size_t(n_nodes)]));
+    std::vector<int> next(adjacency.begin.begin(), adjacency.begin.end() - 1);
+    for (const auto& c : fine.couplings) {
+      const int a = node_of[size_t(c.body[0])], b = node_of[size_t(c.body[1])];
+      if (a == b) continue;
+      adjacency.items[size_t(next[size_t(a)]++)] = b;
+      adjacency.items[size_t(next[size_t(b)]++)] = a;
     }
+    int kept = 0;  // each list sorted and its repeats dropped, compacted in place
+    for (int v = 0; v < n_nodes; ++v) {
+      const auto first = adjacency.items.begin() + adjacency.begin[size_t(v)],
+                 last = adjacency.items.begin() + adjacency.begin[size_t(v) + 1];
+      std::sort(first, last);
+      const int unique = int(std::unique(first, last) - first);
+      adjacency.begin[size_t(v)] = kept;
+      std::copy(first, first + unique, adjacency.items.begin() + kept);
+      kept += unique;
+    }
+    adjacency.begin[size_t(n_nodes)] = kept;
+    adjacency.items.resize(size_t(kept));
     std::vector<bool> node_locked(n_nodes, false);
     for (int b = 0; b < n_fine; ++b)
       if (locked[b]) node_locked[node_of[b]] = true;
