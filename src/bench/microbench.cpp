@@ -231,6 +231,21 @@ void HessianAssembly(benchmark::State& run) {
 }
 BENCHMARK(HessianAssembly)->Arg(60)->Arg(4800)->Unit(benchmark::kMillisecond)->UseRealTime();
 
+// The multigrid's set-up for a new matrix: Galerkin projections, the smoothers' inverse
+// diagonal blocks and the coarsest factor (a Newton-Krylov step's second phase).
+void MultigridSetUp(benchmark::State& run) {
+  const Limb& limb = Limb::of(int(run.range(0)));
+  LimbHessian& h = LimbHessian::of(int(run.range(0)));
+  std::vector<Vec3> position;
+  for (int body : h.hessian.order()) position.push_back(limb.state[size_t(body)].position);
+  for (auto _ : run) {
+    h.multigrid.set_matrix(h.hessian.matrix(), position);
+    benchmark::ClobberMemory();
+  }
+  run.SetItemsProcessed(run.iterations() * h.hessian.matrix().size());
+}
+BENCHMARK(MultigridSetUp)->Arg(60)->Arg(4800)->Unit(benchmark::kMillisecond)->UseRealTime();
+
 void MultigridCycle(benchmark::State& run) {
   LimbHessian& h = LimbHessian::of(int(run.range(0)));
   BlockVector z;
