@@ -61,7 +61,7 @@ PairNumbering number_pairs(const std::vector<std::pair<int, int>>& edges) {
   for (const auto& e : edges)
     if (valid(e)) ++begin[size_t(std::max(e.first, e.second)) + 1];
   for (int v = 0; v < n; ++v) begin[size_t(v) + 1] += begin[size_t(v)];
-  std::vector<int> by_higher(size_t(begin[size_t(n)]));
+  std::vector<int> by_higher(static_cast<size_t>(begin[size_t(n)]));
   std::vector<int> next(begin.begin(), begin.end() - 1);
   for (size_t k = 0; k < edges.size(); ++k)
     if (valid(edges[k]))
