@@ -153,6 +153,49 @@ TEST(RigidMultigrid, AVCycleIsSymmetricAndPositiveDefiniteOnEveryLevelCount) {
   }
 }
 
+TEST(RigidMultigrid, OnABlockDiagonalMatrixTheCycleIsTheInverseAndIndefiniteBlocksAreRefused) {
+  // Without off-diagonal blocks the forward sweep solves exactly and nothing is left for the
+  // coarse levels: one application is the inverse of every diagonal block, which the
+  // smoothers compute (through a 3x3 block and its Schur complement). The blocks mix scales as
+  // the Hessian's do (a body's turns weigh its size squared against its shifts).
+  Posed p = posed_cylinder(12, 16, 0);
+  const RigidSystem& sys = p.deformer.system();
+  const int n = sys.n_bodies();
+  std::mt19937 rng(3);
+  std::normal_distribution<double> normal;
+  BlockMatrix blocks;
+  blocks.set_structure(n, {});
+  std::vector<Mat6> exact(static_cast<size_t>(n));
+  for (int b = 0; b < n; ++b) {
+    Mat6 g;
+    for (int k = 0; k < 36; ++k) g(k / 6, k % 6) = normal(rng);
+    Vec6 scale;
+    scale << 1, 1, 1, 1e-2, 1e-2, 1e-2;
+    const Mat6 m = scale.asDiagonal() * (g * g.transpose() + 0.5 * Mat6::Identity()) *
+                   scale.asDiagonal();
+    blocks.diag[size_t(b)] = m.cast<BlockScalar>();
+    exact[size_t(b)] = blocks.diag[size_t(b)].cast<double>().inverse();
+  }
+  std::vector<Vec3> position;
+  for (const RigidSystem::Body& body : sys.bodies) position.push_back(body.rest_center);
+  RigidMultigrid multigrid(sys, {});
+  ASSERT_TRUE(multigrid.set_matrix(blocks, position));
+  ASSERT_GE(multigrid.levels(), 2);
+  const BlockVector r = random_direction(sys, 4);
+  BlockVector z;
+  multigrid.apply(r, z);
+  for (int b = 0; b < n; ++b) {
+    const Vec6 want = exact[size_t(b)] * r[size_t(b)];
+    ASSERT_LE((z[size_t(b)] - want).norm(), 1e-4 * want.norm()) << "body " << b;
+  }
+  // A block that is not positive definite, in its turning part or in its shifting part.
+  for (const int bad : {0, 4}) {
+    BlockMatrix indefinite = blocks;
+    indefinite.diag[size_t(n / 2)](bad, bad) = -1.0f;
+    EXPECT_FALSE(multigrid.set_matrix(indefinite, position)) << bad;
+  }
+}
+
 TEST(RigidMultigrid, ConjugateGradientsWithTheCycleConvergeInFewIterations) {
   // The preconditioner's purpose: a residual reduced by 1e-6 in a few iterations, where
   // unpreconditioned conjugate gradients need hundreds.

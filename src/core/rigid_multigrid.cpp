@@ -42,36 +42,41 @@ Mat6 transfer(const Mat6& b, const Vec3& di, const Vec3& dj) {
   return out;
 }
 
-// The inverse of a symmetric 6x6 block through its Cholesky factor; false when the block is
-// not positive definite. Written out because Eigen's LLT::solve(Identity) takes its general
-// triangular-solve path for a matrix right-hand side: 40% of set_matrix at 240k faces.
+// The inverse of a symmetric positive definite 3x3 matrix by its cofactors; false when it is
+// not positive definite (a leading minor is not positive: Sylvester's criterion).
+bool spd_inverse3(const Mat3& m, Mat3& inverse) {
+  const double c00 = m(1, 1) * m(2, 2) - m(1, 2) * m(1, 2);
+  const double c01 = m(0, 2) * m(1, 2) - m(0, 1) * m(2, 2);
+  const double c02 = m(0, 1) * m(1, 2) - m(0, 2) * m(1, 1);
+  const double minor2 = m(0, 0) * m(1, 1) - m(0, 1) * m(0, 1);
+  const double det = m(0, 0) * c00 + m(0, 1) * c01 + m(0, 2) * c02;
+  if (!(m(0, 0) > 0.0) || !(minor2 > 0.0) || !(det > 0.0)) return false;
+  const double r = 1.0 / det;
+  inverse(0, 0) = r * c00;
+  inverse(0, 1) = inverse(1, 0) = r * c01;
+  inverse(0, 2) = inverse(2, 0) = r * c02;
+  inverse(1, 1) = r * (m(0, 0) * m(2, 2) - m(0, 2) * m(0, 2));
+  inverse(1, 2) = inverse(2, 1) = r * (m(0, 1) * m(0, 2) - m(0, 0) * m(1, 2));
+  inverse(2, 2) = r * minor2;
+  return true;
+}
+
+// The inverse of a symmetric 6x6 block [[A, B], [B^T, C]] through A's inverse and that of its
+// Schur complement S = C - B^T A^-1 B (3x3 each, by cofactors); false when the block is not
+// positive definite (it is exactly when A and S are). Short, independent chains of products:
+// the Cholesky factor and its inverse, one square root and division after another, took 40%
+// of the multigrid's set-up (docs/performance.md).
 bool spd_inverse(const Mat6& a, Mat6& inverse) {
-  double l[6][6] = {}, m[6][6] = {};  // the factor L and its inverse, lower triangles
-  for (int j = 0; j < 6; ++j) {
-    double d = a(j, j);
-    for (int k = 0; k < j; ++k) d -= l[j][k] * l[j][k];
-    if (!(d > 0.0)) return false;
-    l[j][j] = std::sqrt(d);
-    for (int i = j + 1; i < 6; ++i) {
-      double v = a(i, j);
-      for (int k = 0; k < j; ++k) v -= l[i][k] * l[j][k];
-      l[i][j] = v / l[j][j];
-    }
-  }
-  for (int j = 0; j < 6; ++j) {
-    m[j][j] = 1.0 / l[j][j];
-    for (int i = j + 1; i < 6; ++i) {
-      double v = 0.0;
-      for (int k = j; k < i; ++k) v -= l[i][k] * m[k][j];
-      m[i][j] = v / l[i][i];
-    }
-  }
-  for (int i = 0; i < 6; ++i)  // A^-1 = L^-T L^-1
-    for (int j = 0; j <= i; ++j) {
-      double v = 0.0;
-      for (int k = i; k < 6; ++k) v += m[k][i] * m[k][j];
-      inverse(i, j) = inverse(j, i) = v;
-    }
+  Mat3 a_inverse, s_inverse;
+  if (!spd_inverse3(a.topLeftCorner<3, 3>(), a_inverse)) return false;
+  const Mat3 ai_b = a_inverse * a.topRightCorner<3, 3>();
+  const Mat3 schur = a.bottomRightCorner<3, 3>() - a.topRightCorner<3, 3>().transpose() * ai_b;
+  if (!spd_inverse3(0.5 * (schur + schur.transpose()), s_inverse)) return false;
+  const Mat3 ai_b_si = ai_b * s_inverse;
+  inverse.topLeftCorner<3, 3>() = a_inverse + ai_b_si * ai_b.transpose();
+  inverse.topRightCorner<3, 3>() = -ai_b_si;
+  inverse.bottomLeftCorner<3, 3>() = -ai_b_si.transpose();
+  inverse.bottomRightCorner<3, 3>() = s_inverse;
   return true;
 }
 
