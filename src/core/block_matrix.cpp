@@ -55,22 +55,18 @@ PairNumbering number_pairs(const std::vector<std::pair<int, int>>& edges) {
     return e.first >= 0 && e.second >= 0 && e.first != e.second;
   };
   int n = 0;
-  for (const auto& e : edges)
-    if (valid(e)) n = std::max(n, std::max(e.first, e.second) + 1);
-  std::vector<int> begin(size_t(n) + 1, 0);
-  for (const auto& e : edges)
-    if (valid(e)) ++begin[size_t(std::max(e.first, e.second)) + 1];
-  for (int v = 0; v < n; ++v) begin[size_t(v) + 1] += begin[size_t(v)];
-  std::vector<int> by_higher(static_cast<size_t>(begin[size_t(n)]));
-  std::vector<int> next(begin.begin(), begin.end() - 1);
+  std::vector<int> higher(edges.size(), -1);  // each valid edge's higher end
   for (size_t k = 0; k < edges.size(); ++k)
-    if (valid(edges[k]))
-      by_higher[size_t(next[size_t(std::max(edges[k].first, edges[k].second))]++)] = int(k);
+    if (valid(edges[k])) {
+      higher[k] = std::max(edges[k].first, edges[k].second);
+      n = std::max(n, higher[k] + 1);
+    }
+  const Groups by_higher = group_by(higher, n);  // each bucket in edge order
   // first[k]: the first edge with edge k's ends (k itself for a pair's first edge).
   std::vector<int> first(edges.size(), -1), seen_in(size_t(n), -1), seen_first(size_t(n), -1);
   for (int hi = 0; hi < n; ++hi)
-    for (int i = begin[size_t(hi)]; i < begin[size_t(hi) + 1]; ++i) {
-      const int k = by_higher[size_t(i)];
+    for (int i = by_higher.begin[size_t(hi)]; i < by_higher.begin[size_t(hi) + 1]; ++i) {
+      const int k = by_higher.items[size_t(i)];
       const int lo = std::min(edges[size_t(k)].first, edges[size_t(k)].second);
       if (seen_in[size_t(lo)] != hi) {
         seen_in[size_t(lo)] = hi;

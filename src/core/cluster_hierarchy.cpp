@@ -97,23 +97,16 @@ ClusterHierarchy build_cluster_hierarchy(const RigidSystem& fine, const Hierarch
     for (int v = 0; v < n_nodes; ++v) position[v] /= weight[v];
     // The nodes' neighbours, each list sorted and without repeats (as compressed rows: one
     // small vector per node cost more than the aggregation at 180,000 bodies).
-    Groups adjacency;
-    adjacency.begin.assign(size_t(n_nodes) + 1, 0);
-    for (const auto& c : fine.couplings) {
-      const int a = node_of[size_t(c.body[0])], b = node_of[size_t(c.body[1])];
+    std::vector<int> end_node(2 * fine.couplings.size(), -1);  // both ends of each coupling
+    for (size_t k = 0; k < fine.couplings.size(); ++k) {
+      const int a = node_of[size_t(fine.couplings[k].body[0])],
+                b = node_of[size_t(fine.couplings[k].body[1])];
       if (a == b) continue;
-      ++adjacency.begin[size_t(a) + 1];
-      ++adjacency.begin[size_t(b) + 1];
+      end_node[2 * k] = a;
+      end_node[2 * k + 1] = b;
     }
-    for (int v = 0; v < n_nodes; ++v) adjacency.begin[size_t(v) + 1] += adjacency.begin[size_t(v)];
-    adjacency.items.resize(size_t(adjacency.begin[size_t(n_nodes)]));
-    std::vector<int> next(adjacency.begin.begin(), adjacency.begin.end() - 1);
-    for (const auto& c : fine.couplings) {
-      const int a = node_of[size_t(c.body[0])], b = node_of[size_t(c.body[1])];
-      if (a == b) continue;
-      adjacency.items[size_t(next[size_t(a)]++)] = b;
-      adjacency.items[size_t(next[size_t(b)]++)] = a;
-    }
+    Groups adjacency = group_by(end_node, n_nodes);  // node -> its coupling ends
+    for (int& end : adjacency.items) end = end_node[size_t(end ^ 1)];  // -> the other end's node
     int kept = 0;  // each list sorted and its repeats dropped, compacted in place
     for (int v = 0; v < n_nodes; ++v) {
       const auto first = adjacency.items.begin() + adjacency.begin[size_t(v)],
