@@ -1,5 +1,6 @@
-// block_matrix.h: pair numbering, grouping, and the 6x6-block matrix's product, against
-// plain references (a map of pairs in order of first appearance; a dense matrix).
+// block_matrix.h: pair numbering, grouping, a pair's block in its 16 numbers, and the
+// 6x6-block matrix's product, against plain references (a map of pairs in order of first
+// appearance; a pair's block from its points; a dense matrix).
 
 #include <gtest/gtest.h>
 
@@ -30,6 +31,24 @@ PairNumbering reference_numbering(const std::vector<std::pair<int, int>>& edges)
   return out;
 }
 
+Mat3 cross(const Vec3& a) {
+  Mat3 m;
+  m << 0, -a[2], a[1], a[2], 0, -a[0], -a[1], a[0], 0;
+  return m;
+}
+
+PairBlock random_pair_block(std::mt19937& rng) {
+  std::normal_distribution<float> normal;
+  PairBlock b;
+  b.weight = normal(rng);
+  for (int k = 0; k < 3; ++k) {
+    b.row_arm[k] = normal(rng);
+    b.column_arm[k] = normal(rng);
+  }
+  for (int k = 0; k < 9; ++k) b.turn(k / 3, k % 3) = normal(rng);
+  return b;
+}
+
 }  // namespace
 
 TEST(PairNumbering, NumbersPairsInOrderOfFirstAppearanceAsTheReference) {
@@ -58,6 +77,63 @@ TEST(Groups, GroupItemsByKeyInOrderAndSkipNegativeKeys) {
   EXPECT_EQ(g.items, (std::vector<int>{1, 5, 4, 0, 3}));
 }
 
+TEST(PairBlock, IsTheDenseBlockOfAPairOfBodiesJoinedAtPoints) {
+  // A pair's block from its points (rows the first body, columns the second): the Gauss-Newton
+  // block of sum w |X_0 - X_1|^2 / 2 over points at arms y0, y1 from the bodies' points, i.e.
+  // -sum w J(y0)^T J(y1) with J(y) = [I, -[y]x] (a motion (v, omega) moves the point by
+  // v + omega x y).
+  std::mt19937 rng(4);
+  std::normal_distribution<double> normal;
+  auto random3 = [&] { return Vec3(normal(rng), normal(rng), normal(rng)); };
+  auto jacobian = [](const Vec3& y) {
+    Eigen::Matrix<double, 3, 6> j;
+    j << Mat3::Identity(), -cross(y);
+    return j;
+  };
+  PairBlockSum block = PairBlockSum::Zero();
+  Mat6 want = Mat6::Zero();
+  for (int q = 0; q < 4; ++q) {
+    const double w = 0.5 + q;
+    const Vec3 y0 = random3(), y1 = random3();
+    PairBlockSum point;
+    point.weight = -w;
+    point.row_arm = -w * y0;
+    point.column_arm = -w * y1;
+    point.turn = w * y1 * y0.transpose() - w * y0.dot(y1) * Mat3::Identity();
+    block += point;
+    want -= w * jacobian(y0).transpose() * jacobian(y1);
+  }
+  EXPECT_LT((block.dense() - want).norm(), 1e-12 * want.norm());
+  EXPECT_LT((block.transposed().dense() - want.transpose()).norm(), 1e-12 * want.norm());
+  // Moving the bodies' points: T_0^T B T_1 with T = [[I, -[d]x], [0, I]].
+  const Vec3 d0 = random3(), d1 = random3();
+  auto transfer = [](const Vec3& d) {
+    Mat6 t = Mat6::Identity();
+    t.block<3, 3>(0, 3) = -cross(d);
+    return t;
+  };
+  const Mat6 moved = transfer(d0).transpose() * want * transfer(d1);
+  EXPECT_LT((block.shifted(d0, d1).dense() - moved).norm(), 1e-12 * moved.norm());
+  // The product is the dense block's.
+  Vec6 x, y = Vec6::Zero();
+  for (int k = 0; k < 6; ++k) x[k] = normal(rng);
+  block.add_product(x, y);
+  EXPECT_LT((y - want * x).norm(), 1e-12 * (want * x).norm());
+  // A handle's fixed shifts or turns: their rows (the body is the row's) or columns are zero,
+  // the rest is the block's.
+  for (int fixed_row = 0; fixed_row < 3; ++fixed_row)
+    for (int fixed_column = 0; fixed_column < 3; ++fixed_column) {
+      PairBlockSum masked = block;  // 0: nothing fixed, 1: shifts fixed, 2: turns fixed
+      masked.mask(fixed_row != 1, fixed_row != 2, fixed_column != 1, fixed_column != 2);
+      Mat6 expected = block.dense();
+      if (fixed_row == 1) expected.topRows<3>().setZero();
+      if (fixed_row == 2) expected.bottomRows<3>().setZero();
+      if (fixed_column == 1) expected.leftCols<3>().setZero();
+      if (fixed_column == 2) expected.rightCols<3>().setZero();
+      EXPECT_EQ(masked.dense(), expected) << fixed_row << " " << fixed_column;
+    }
+}
+
 TEST(BlockMatrix, ProductMatchesTheDenseMatrixWithEveryPairStoredInBothRows) {
   std::mt19937 rng(9);
   std::normal_distribution<float> normal;
@@ -73,13 +149,12 @@ TEST(BlockMatrix, ProductMatchesTheDenseMatrixWithEveryPairStoredInBothRows) {
     dense.block<6, 6>(6 * b, 6 * b) = block.cast<double>();
   }
   for (size_t p = 0; p < pairs.size(); ++p) {
-    Mat6f block;
-    for (int k = 0; k < 36; ++k) block(k / 6, k % 6) = normal(rng);
+    const PairBlock block = random_pair_block(rng);
     a.set_off(p, block);
-    EXPECT_EQ(a.off(p), block);
+    EXPECT_EQ(a.off(p).dense(), block.dense());
     const auto [i, j] = pairs[p];
-    dense.block<6, 6>(6 * i, 6 * j) = block.cast<double>();
-    dense.block<6, 6>(6 * j, 6 * i) = block.transpose().cast<double>();
+    dense.block<6, 6>(6 * i, 6 * j) = block.dense();
+    dense.block<6, 6>(6 * j, 6 * i) = block.dense().transpose();
   }
   BlockVector x(static_cast<size_t>(n)), y;
   Eigen::VectorXd xd(6 * n);

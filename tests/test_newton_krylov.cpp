@@ -614,12 +614,15 @@ TEST(NewtonKrylov, ConjugateGradientsStopAtTheFirstIterationThatAddsLittleToTheM
         EXPECT_GT(decrease, 0.0);
         total += decrease;
         // Every iteration before the last added more than `ratio` of the total so far.
-        if (i + 1 < step.cg_iterations) EXPECT_GT(decrease, ratio * total) << ratio << " " << i;
+        if (i + 1 < step.cg_iterations) {
+          EXPECT_GT(decrease, ratio * total) << ratio << " " << i;
+        }
       }
       EXPECT_LE(step.model_decreases.back(), ratio * total);
-      if (step.step_scale == 1.0)
+      if (step.step_scale == 1.0) {
         EXPECT_NEAR(step.energy_before - step.energy_after, 2 * total, 0.05 * 2 * total)
             << ratio << " step " << k;
+      }
       std::cout << "[ metric   ] stop ratio " << ratio << ", step " << k << ": "
                 << step.cg_iterations << " iterations, energy lowered by "
                 << step.energy_before - step.energy_after << ", twice the model's decrease "

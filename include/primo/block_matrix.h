@@ -2,7 +2,8 @@
 // A symmetric matrix of 6x6 blocks with one row of blocks per body: the Hessian of the joint
 // and spring energy in the bodies' motions (v, omega), or its projection onto clusters of
 // bodies (rigid_multigrid.h). Only the diagonal blocks and the blocks of coupled pairs are
-// stored; a vector is one Vec6 per body.
+// stored, the latter in the 16 numbers that determine them (PairBlock); a vector is one Vec6
+// per body.
 
 #include <utility>
 #include <vector>
@@ -17,6 +18,126 @@ using BlockVector = std::vector<Vec6>;
 using BlockScalar = float;
 using Mat6f = Eigen::Matrix<BlockScalar, 6, 6>;
 
+// The block of two bodies whose energy is a sum of squared differences of points, each moved
+// rigidly by one of them (a joint: the residuals X_row - X_column; a cluster pair of the
+// multigrid: a sum of its bodies' joints), rows the first body's motion (v, omega), columns
+// the second's:
+//   [[weight I, -[column_arm]x], [[row_arm]x, turn]]
+// with weight = -sum w, the arms -sum w y over each side's arms y from its body's point, and
+// turn = sum w y_column y_row^T - (sum w y_row . y_column) I. Sixteen numbers instead of 36: a
+// product or a Gauss-Seidel sweep with the Hessian is bound by memory traffic, and at 192,000
+// bodies a multigrid cycle took 38-47 ms with them against 58-66 ms with dense blocks
+// (docs/performance.md). The form is kept by sums, by moving either body's point (a cluster's
+// Galerkin projection) and by zeroing the rows or columns of a body's shifts or turns (a
+// handle's fixed dofs), so every level of the multigrid stores its pairs this way.
+template <class Scalar>
+struct alignas(16 * sizeof(Scalar)) PairBlockOf {  // one cache line in single precision
+  using V3 = Eigen::Matrix<Scalar, 3, 1>;
+  using M3 = Eigen::Matrix<Scalar, 3, 3>;
+  Scalar weight;
+  V3 row_arm, column_arm;
+  M3 turn;
+
+  // Uninitialized, as Eigen's fixed-size matrices are: a matrix's blocks are first written
+  // in parallel (BlockMatrix::set_structure), which places their pages near the threads.
+  PairBlockOf() {}
+  static PairBlockOf Zero() {
+    PairBlockOf z;
+    z.weight = Scalar(0);
+    z.row_arm.setZero();
+    z.column_arm.setZero();
+    z.turn.setZero();
+    return z;
+  }
+
+  // y += B x.
+  void add_product(const Vec6& x, Vec6& y) const {
+    const double v0 = x[0], v1 = x[1], v2 = x[2], w0 = x[3], w1 = x[4], w2 = x[5];
+    const double m = double(weight);
+    const double r0 = double(row_arm[0]), r1 = double(row_arm[1]), r2 = double(row_arm[2]);
+    const double c0 = double(column_arm[0]), c1 = double(column_arm[1]),
+                 c2 = double(column_arm[2]);
+    y[0] += m * v0 + (w1 * c2 - w2 * c1);  // weight v + omega x column_arm
+    y[1] += m * v1 + (w2 * c0 - w0 * c2);
+    y[2] += m * v2 + (w0 * c1 - w1 * c0);
+    y[3] += (r1 * v2 - r2 * v1) + double(turn(0, 0)) * w0 + double(turn(0, 1)) * w1 +
+            double(turn(0, 2)) * w2;  // row_arm x v + turn omega
+    y[4] += (r2 * v0 - r0 * v2) + double(turn(1, 0)) * w0 + double(turn(1, 1)) * w1 +
+            double(turn(1, 2)) * w2;
+    y[5] += (r0 * v1 - r1 * v0) + double(turn(2, 0)) * w0 + double(turn(2, 1)) * w1 +
+            double(turn(2, 2)) * w2;
+  }
+  // B^T: the same pair seen from its second body.
+  PairBlockOf transposed() const {
+    PairBlockOf t;
+    t.weight = weight;
+    t.row_arm = column_arm;
+    t.column_arm = row_arm;
+    t.turn = turn.transpose();
+    return t;
+  }
+  // T_row^T B T_column for the rigid transfers T = [[I, -[d]x], [0, I]] that move a body's
+  // point by -d (a cluster's motion seen by a body whose point is d from the cluster's).
+  PairBlockOf shifted(const V3& d_row, const V3& d_column) const {
+    PairBlockOf s;
+    s.weight = weight;
+    s.row_arm = row_arm + weight * d_row;
+    s.column_arm = column_arm + weight * d_column;
+    s.turn = turn - cross(row_arm) * cross(d_column) - cross(d_row) * cross(s.column_arm);
+    return s;
+  }
+  // Zeroes the rows or columns of shifts (v) or turns (omega) that are not to move.
+  void mask(bool row_shifts, bool row_turns, bool column_shifts, bool column_turns) {
+    if (!row_shifts || !column_shifts) weight = Scalar(0);
+    if (!row_shifts || !column_turns) column_arm.setZero();
+    if (!row_turns || !column_shifts) row_arm.setZero();
+    if (!row_turns || !column_turns) turn.setZero();
+  }
+  PairBlockOf& operator+=(const PairBlockOf& b) {
+    weight += b.weight;
+    row_arm += b.row_arm;
+    column_arm += b.column_arm;
+    turn += b.turn;
+    return *this;
+  }
+  template <class Other>
+  PairBlockOf<Other> cast() const {
+    PairBlockOf<Other> c;
+    c.weight = Other(weight);
+    c.row_arm = row_arm.template cast<Other>();
+    c.column_arm = column_arm.template cast<Other>();
+    c.turn = turn.template cast<Other>();
+    return c;
+  }
+  Mat6 dense() const {
+    Mat6 b;
+    b.template block<3, 3>(0, 0) = double(weight) * Mat3::Identity();
+    b.template block<3, 3>(0, 3) = -cross(column_arm).template cast<double>();
+    b.template block<3, 3>(3, 0) = cross(row_arm).template cast<double>();
+    b.template block<3, 3>(3, 3) = turn.template cast<double>();
+    return b;
+  }
+
+ private:
+  static M3 cross(const V3& a) {  // [a]x
+    M3 m;
+    m << Scalar(0), -a[2], a[1], a[2], Scalar(0), -a[0], -a[1], a[0], Scalar(0);
+    return m;
+  }
+};
+using PairBlock = PairBlockOf<BlockScalar>;
+// m x in double for a block stored in single precision, column by column: Eigen's
+// m.cast<double>() * x took 12% longer in a product with the Hessian at 192,000 bodies.
+inline Vec6 times(const Mat6f& m, const Vec6& x) {
+  Vec6 y = Vec6::Zero();
+  for (int c = 0; c < 6; ++c) {
+    const double xc = x[c];
+    for (int r = 0; r < 6; ++r) y[r] += double(m(r, c)) * xc;
+  }
+  return y;
+}
+using PairBlockSum = PairBlockOf<double>;  // to add many in
+
 struct BlockMatrix {
   std::vector<Mat6f> diag;
   // The coupled pairs (row body, column body), row > column, each once.
@@ -27,24 +148,24 @@ struct BlockMatrix {
   // streams each row without gathering or transposing (it is bound by memory traffic).
   std::vector<int> row_begin;
   std::vector<int> row_column;
-  std::vector<Mat6f> row_block;
+  std::vector<PairBlock> row_block;
   std::vector<int> pair_slot, pair_slot_transposed;  // where pair p's two copies are
 
   int size() const { return int(diag.size()); }
   // Sizes diag and the rows (zero) for `n` bodies and the given pairs.
   void set_structure(int n, std::vector<std::pair<int, int>> coupled_pairs);
   // The block of pair p (rows of its first body, columns of its second), and setting it.
-  const Mat6f& off(size_t p) const { return row_block[size_t(pair_slot[p])]; }
-  void set_off(size_t p, const Mat6f& block) {
+  const PairBlock& off(size_t p) const { return row_block[size_t(pair_slot[p])]; }
+  void set_off(size_t p, const PairBlock& block) {
     row_block[size_t(pair_slot[p])] = block;
-    row_block[size_t(pair_slot_transposed[p])] = block.transpose();
+    row_block[size_t(pair_slot_transposed[p])] = block.transposed();
   }
   // sum over the body's off-diagonal blocks of block * x[column], in row order.
   Vec6 off_product(int body, const BlockVector& x) const {
     Vec6 sum = Vec6::Zero();
     const int end = row_begin[size_t(body) + 1];
     for (int k = row_begin[size_t(body)]; k < end; ++k)
-      sum.noalias() += row_block[size_t(k)].cast<double>() * x[size_t(row_column[size_t(k)])];
+      row_block[size_t(k)].add_product(x[size_t(row_column[size_t(k)])], sum);
     return sum;
   }
   // The same sum in reverse row order. A backward Gauss-Seidel sweep walks the rows from the
@@ -54,7 +175,7 @@ struct BlockMatrix {
     Vec6 sum = Vec6::Zero();
     const int begin = row_begin[size_t(body)];
     for (int k = row_begin[size_t(body) + 1] - 1; k >= begin; --k)
-      sum.noalias() += row_block[size_t(k)].cast<double>() * x[size_t(row_column[size_t(k)])];
+      row_block[size_t(k)].add_product(x[size_t(row_column[size_t(k)])], sum);
     return sum;
   }
   // y = A x, in parallel by rows (the same bits on any number of threads).

@@ -83,23 +83,6 @@ struct OwnSums {
   }
 };
 
-// A pair's block (FeatureBlocks::add_cross summed): rows side 0's dofs, columns side 1's.
-struct CrossSums {
-  double point_weight = 0.0;
-  Vec3 arm0 = Vec3::Zero(), arm1 = Vec3::Zero();  // sums of w y_0, w y_1 over the points
-  Mat3 y1y0 = Mat3::Zero();                       // sum of w y_1 y_0^T
-
-  Mat6 block() const {
-    Mat6 h;
-    h.block<3, 3>(0, 0) = -point_weight * Mat3::Identity();
-    h.block<3, 3>(0, 3) = cross_matrix(arm1);
-    h.block<3, 3>(3, 0) = -cross_matrix(arm0);
-    h.block<3, 3>(3, 3) = y1y0;
-    h.block<3, 3>(3, 3).diagonal().array() -= y1y0.trace();
-    return h;
-  }
-};
-
 }  // namespace
 
 RigidHessian::RigidHessian(const RigidSystem& system, std::vector<int> order)
@@ -140,7 +123,7 @@ void RigidHessian::assemble(const std::vector<BodyState>& state, bool second_ord
   // the pairs whose first row it is, their off-diagonal blocks from the same residuals (the
   // modes turned into world orientation once per coupling side, not once more per pair).
   parallel_chunks(size_t(sys.n_bodies()), kBodyGrain, [&](size_t begin, size_t end) {
-    std::vector<std::pair<int, Mat6>> crosses;  // this row's pairs' blocks
+    std::vector<std::pair<int, PairBlockSum>> crosses;  // this row's pairs' blocks
     for (size_t row = begin; row < end; ++row) {
       const size_t b = size_t(order_[row]);
       if (row + kAssemblyAhead < end) {
@@ -167,14 +150,14 @@ void RigidHessian::assemble(const std::vector<BodyState>& state, bool second_ord
           own.add_coupling(moment, p_own, p_other, d, c.local[side], c.weight);
           if (coupling_first_side_[size_t(ci)] != side) continue;
           const int pair = coupling_pair_[size_t(ci)];
-          // The pair's block, rows side 0's dofs (as FeatureBlocks::add_cross), then turned to
-          // this row's.
-          CrossSums cross;
-          cross.point_weight = c.weight;
-          cross.arm0 = c.weight * (side == 0 ? p_own : p_other);
-          cross.arm1 = c.weight * (side == 0 ? p_other : p_own);
-          cross.y1y0 = side == 0 ? Mat3(moment.transpose()) : moment;
-          const Mat6 block = side == 0 ? cross.block() : Mat6(cross.block().transpose());
+          // The pair's block (FeatureBlocks::add_cross summed), rows this side's dofs:
+          // weight -w, arms -w p, turn K^T - tr(K) I.
+          PairBlockSum block;
+          block.weight = -c.weight;
+          block.row_arm = -c.weight * p_own;
+          block.column_arm = -c.weight * p_other;
+          block.turn = moment.transpose();
+          block.turn.diagonal().array() -= moment.trace();
           auto known = std::find_if(crosses.begin(), crosses.end(),
                                     [&](const auto& e) { return e.first == pair; });
           if (known == crosses.end())
@@ -203,11 +186,9 @@ void RigidHessian::assemble(const std::vector<BodyState>& state, bool second_ord
       matrix_.diag[row] = h.cast<BlockScalar>();
       gradient_[row] = g;
       for (auto& [pair, h01] : crosses) {
+        // Handles fix all their shifts, all their turns, or both (active_mask).
         const int m1 = mask_[size_t(matrix_.pairs[size_t(pair)].second)];
-        for (int d = 0; d < 6; ++d) {
-          if (!(mask & (1 << d))) h01.row(d).setZero();
-          if (!(m1 & (1 << d))) h01.col(d).setZero();
-        }
+        h01.mask(mask & 0x07, mask & 0x38, m1 & 0x07, m1 & 0x38);
         matrix_.set_off(size_t(pair), h01.cast<BlockScalar>());
       }
     }

@@ -86,7 +86,8 @@ bool spd_inverse(const Mat6& a, Mat6& inverse) {
 constexpr size_t kPrefetchRows = 3;
 void prefetch_row(const BlockMatrix& a, const std::vector<Mat6f>& diag_inverse, int row) {
   prefetch_bytes(a.row_block.data() + a.row_begin[size_t(row)],
-                 size_t(a.row_begin[size_t(row) + 1] - a.row_begin[size_t(row)]) * sizeof(Mat6f));
+                 size_t(a.row_begin[size_t(row) + 1] - a.row_begin[size_t(row)]) *
+                     sizeof(PairBlock));
   prefetch_bytes(&diag_inverse[size_t(row)], sizeof(Mat6f));
 }
 
@@ -293,11 +294,13 @@ bool RigidMultigrid::set_matrix(const BlockMatrix& fine, const std::vector<Vec3>
         for (int k = coarse.internal.begin[c]; k < coarse.internal.begin[c + 1]; ++k) {
           if (k + kGatherAhead < internal_end)
             prefetch_bytes(&a.off(size_t(coarse.internal.items[size_t(k + kGatherAhead)])),
-                           sizeof(Mat6f));
+                           sizeof(PairBlock));
           const size_t p = size_t(coarse.internal.items[size_t(k)]);
           const auto [i, j] = a.pairs[p];
-          const Mat6 block =
-              transfer(a.off(p).cast<double>(), finer.arm[size_t(i)], finer.arm[size_t(j)]);
+          const Mat6 block = a.off(p)
+                                 .cast<double>()
+                                 .shifted(finer.arm[size_t(i)], finer.arm[size_t(j)])
+                                 .dense();
           sum += block + block.transpose();
         }
         m.diag[c] = sum.cast<BlockScalar>();
@@ -306,20 +309,19 @@ bool RigidMultigrid::set_matrix(const BlockMatrix& fine, const std::vector<Vec3>
     parallel_chunks(m.pairs.size(), kParallelGrain / 8, [&](size_t begin, size_t end) {
       const int sources_end = coarse.sources.begin[end];  // prefetches stay in the chunk
       for (size_t q = begin; q < end; ++q) {
-        Mat6 sum = Mat6::Zero();
+        PairBlockSum sum = PairBlockSum::Zero();
         for (int k = coarse.sources.begin[q]; k < coarse.sources.begin[q + 1]; ++k) {
           if (k + kGatherAhead < sources_end)
             prefetch_bytes(&a.off(size_t(coarse.sources.items[size_t(k + kGatherAhead)])),
-                           sizeof(Mat6f));
+                           sizeof(PairBlock));
           const size_t p = size_t(coarse.sources.items[size_t(k)]);
           const auto [i, j] = a.pairs[p];
-          const Mat6 block =
-              transfer(a.off(p).cast<double>(), finer.arm[size_t(i)], finer.arm[size_t(j)]);
+          const PairBlockSum block = a.off(p).cast<double>();
           // The finer pair's first body lies in the coarse pair's first cluster, or the other way.
           if (finer.parent[size_t(i)] == m.pairs[q].first)
-            sum += block;
+            sum += block.shifted(finer.arm[size_t(i)], finer.arm[size_t(j)]);
           else
-            sum += block.transpose();
+            sum += block.transposed().shifted(finer.arm[size_t(j)], finer.arm[size_t(i)]);
         }
         m.set_off(q, sum.cast<BlockScalar>());
       }
@@ -350,10 +352,11 @@ bool RigidMultigrid::set_matrix(const BlockMatrix& fine, const std::vector<Vec3>
     for (int k = 0; k < 36; ++k)
       if (co.diag_slots[b][size_t(k)] >= 0)
         values[co.diag_slots[b][size_t(k)]] += double(last.diag[b](k / 6, k % 6));
-  for (size_t p = 0; p < last.pairs.size(); ++p)
+  for (size_t p = 0; p < last.pairs.size(); ++p) {
+    const Mat6 block = last.off(p).dense();
     for (int k = 0; k < 36; ++k)
-      if (co.off_slots[p][size_t(k)] >= 0)
-        values[co.off_slots[p][size_t(k)]] += double(last.off(p)(k / 6, k % 6));
+      if (co.off_slots[p][size_t(k)] >= 0) values[co.off_slots[p][size_t(k)]] += block(k / 6, k % 6);
+  }
   if (!co.analyzed) {
     co.factor.analyzePattern(co.matrix);
     co.analyzed = true;
@@ -379,7 +382,7 @@ void RigidMultigrid::sweep(const Level& level, const BlockVector& rhs, BlockVect
           prefetch_row(a, level.diag_inverse,
                        part[forward ? i + kPrefetchRows : m - 1 - kPrefetchRows - i]);
         const Vec6 off = forward ? a.off_product(b, x) : a.off_product_descending(b, x);
-        x[size_t(b)] = level.diag_inverse[size_t(b)].cast<double>() * (rhs[size_t(b)] - off);
+        x[size_t(b)] = times(level.diag_inverse[size_t(b)], rhs[size_t(b)] - off);
       }
     });
   }
@@ -401,7 +404,7 @@ void RigidMultigrid::cycle(size_t l, const BlockVector& rhs, BlockVector& x) {
   level.residual.resize(n);
   parallel_chunks(n, kParallelGrain / 4, [&](size_t begin, size_t end) {
     for (size_t b = begin; b < end; ++b)
-      level.residual[b] = rhs[b] - a.diag[b].cast<double>() * x[b] - a.off_product(int(b), x);
+      level.residual[b] = rhs[b] - times(a.diag[b], x[b]) - a.off_product(int(b), x);
   });
   Level& coarse = *levels_[l + 1];
   const size_t nc = coarse.own.diag.size();
