@@ -25,11 +25,12 @@ using Mat6f = Eigen::Matrix<BlockScalar, 6, 6>;
 //   [[weight I, -[column_arm]x], [[row_arm]x, turn]]
 // with weight = -sum w, the arms -sum w y over each side's arms y from its body's point, and
 // turn = sum w y_column y_row^T - (sum w y_row . y_column) I. Sixteen numbers instead of 36: a
-// product or a Gauss-Seidel sweep with the Hessian is bound by memory traffic, and at 192,000
-// bodies a multigrid cycle took 38-47 ms with them against 58-66 ms with dense blocks
-// (docs/performance.md). The form is kept by sums, by moving either body's point (a cluster's
-// Galerkin projection) and by zeroing the rows or columns of a body's shifts or turns (a
-// handle's fixed dofs), so every level of the multigrid stores its pairs this way.
+// product or a Gauss-Seidel sweep with the Hessian streams every block, and at 192,000 bodies
+// a product took 7.3 ms with them against 8.3 ms, a multigrid cycle 63 against 67 ms, the
+// Hessian's assembly 61-80 against 85-99 ms (docs/performance.md). The form is kept by sums,
+// by moving either body's point (a cluster's Galerkin projection) and by zeroing the rows or
+// columns of a body's shifts or turns (a handle's fixed dofs), so every level of the
+// multigrid stores its pairs this way.
 template <class Scalar>
 struct alignas(16 * sizeof(Scalar)) PairBlockOf {  // one cache line in single precision
   using V3 = Eigen::Matrix<Scalar, 3, 1>;
