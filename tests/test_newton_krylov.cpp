@@ -145,7 +145,9 @@ TEST(RigidMultigrid, AVCycleIsSymmetricAndPositiveDefiniteOnEveryLevelCount) {
     multigrid.apply(a, ma);
     multigrid.apply(b, mb);
     const double scale = std::sqrt(dot(a, ma) * dot(b, mb));
-    EXPECT_NEAR(dot(ma, b), dot(a, mb), 1e-9 * scale) << multigrid.levels() << " levels";
+    // Symmetric up to the rounding of a cycle in single precision (about 2e-9 here; a cycle
+    // whose post-smoothing sweep runs forwards too is off by 1.5e-4 to 1.6e-3 of it).
+    EXPECT_NEAR(dot(ma, b), dot(a, mb), 1e-7 * scale) << multigrid.levels() << " levels";
     EXPECT_GT(dot(a, ma), 0.0);
     if (coarsest == 20) {
       EXPECT_GE(multigrid.levels(), 4);

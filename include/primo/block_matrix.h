@@ -13,6 +13,9 @@
 namespace primo {
 
 using BlockVector = std::vector<Vec6>;
+// The multigrid preconditioner's vectors (rigid_multigrid.h): it only needs a few digits.
+using Vec6f = Eigen::Matrix<float, 6, 1>;
+using BlockVectorF = std::vector<Vec6f>;
 // Blocks are stored in single precision: products with them are bound by memory traffic, and
 // conjugate gradients only solve to a few digits (vectors and sums stay double).
 using BlockScalar = float;
@@ -51,22 +54,21 @@ struct alignas(16 * sizeof(Scalar)) PairBlockOf {  // one cache line in single p
     return z;
   }
 
-  // y += B x.
-  void add_product(const Vec6& x, Vec6& y) const {
-    const double v0 = x[0], v1 = x[1], v2 = x[2], w0 = x[3], w1 = x[4], w2 = x[5];
-    const double m = double(weight);
-    const double r0 = double(row_arm[0]), r1 = double(row_arm[1]), r2 = double(row_arm[2]);
-    const double c0 = double(column_arm[0]), c1 = double(column_arm[1]),
-                 c2 = double(column_arm[2]);
+  // y += B x, in the vectors' precision.
+  template <class V>
+  void add_product(const V& x, V& y) const {
+    using T = typename V::Scalar;
+    const T v0 = x[0], v1 = x[1], v2 = x[2], w0 = x[3], w1 = x[4], w2 = x[5];
+    const T m = T(weight);
+    const T r0 = T(row_arm[0]), r1 = T(row_arm[1]), r2 = T(row_arm[2]);
+    const T c0 = T(column_arm[0]), c1 = T(column_arm[1]), c2 = T(column_arm[2]);
     y[0] += m * v0 + (w1 * c2 - w2 * c1);  // weight v + omega x column_arm
     y[1] += m * v1 + (w2 * c0 - w0 * c2);
     y[2] += m * v2 + (w0 * c1 - w1 * c0);
-    y[3] += (r1 * v2 - r2 * v1) + double(turn(0, 0)) * w0 + double(turn(0, 1)) * w1 +
-            double(turn(0, 2)) * w2;  // row_arm x v + turn omega
-    y[4] += (r2 * v0 - r0 * v2) + double(turn(1, 0)) * w0 + double(turn(1, 1)) * w1 +
-            double(turn(1, 2)) * w2;
-    y[5] += (r0 * v1 - r1 * v0) + double(turn(2, 0)) * w0 + double(turn(2, 1)) * w1 +
-            double(turn(2, 2)) * w2;
+    y[3] += (r1 * v2 - r2 * v1) + T(turn(0, 0)) * w0 + T(turn(0, 1)) * w1 +
+            T(turn(0, 2)) * w2;  // row_arm x v + turn omega
+    y[4] += (r2 * v0 - r0 * v2) + T(turn(1, 0)) * w0 + T(turn(1, 1)) * w1 + T(turn(1, 2)) * w2;
+    y[5] += (r0 * v1 - r1 * v0) + T(turn(2, 0)) * w0 + T(turn(2, 1)) * w1 + T(turn(2, 2)) * w2;
   }
   // B^T: the same pair seen from its second body.
   PairBlockOf transposed() const {
@@ -127,13 +129,14 @@ struct alignas(16 * sizeof(Scalar)) PairBlockOf {  // one cache line in single p
   }
 };
 using PairBlock = PairBlockOf<BlockScalar>;
-// m x in double for a block stored in single precision, column by column: Eigen's
-// m.cast<double>() * x took 12% longer in a product with the Hessian at 192,000 bodies.
-inline Vec6 times(const Mat6f& m, const Vec6& x) {
-  Vec6 y = Vec6::Zero();
+// m x in the vector's precision for a block stored in single precision, column by column:
+// Eigen's m.cast<double>() * x took 12% longer in a product with the Hessian at 192,000 bodies.
+template <class T>
+Eigen::Matrix<T, 6, 1> times(const Mat6f& m, const Eigen::Matrix<T, 6, 1>& x) {
+  Eigen::Matrix<T, 6, 1> y = Eigen::Matrix<T, 6, 1>::Zero();
   for (int c = 0; c < 6; ++c) {
-    const double xc = x[c];
-    for (int r = 0; r < 6; ++r) y[r] += double(m(r, c)) * xc;
+    const T xc = x[c];
+    for (int r = 0; r < 6; ++r) y[r] += T(m(r, c)) * xc;
   }
   return y;
 }
@@ -162,8 +165,9 @@ struct BlockMatrix {
     row_block[size_t(pair_slot_transposed[p])] = block.transposed();
   }
   // sum over the body's off-diagonal blocks of block * x[column], in row order.
-  Vec6 off_product(int body, const BlockVector& x) const {
-    Vec6 sum = Vec6::Zero();
+  template <class V>
+  V off_product(int body, const std::vector<V>& x) const {
+    V sum = V::Zero();
     const int end = row_begin[size_t(body) + 1];
     for (int k = row_begin[size_t(body)]; k < end; ++k)
       row_block[size_t(k)].add_product(x[size_t(row_column[size_t(k)])], sum);
@@ -172,8 +176,9 @@ struct BlockMatrix {
   // The same sum in reverse row order. A backward Gauss-Seidel sweep walks the rows from the
   // end, and the processor's prefetchers follow it only when every read in it descends: at
   // 192,000 bodies the multigrid's backward sweep took 14 ms instead of 27 so.
-  Vec6 off_product_descending(int body, const BlockVector& x) const {
-    Vec6 sum = Vec6::Zero();
+  template <class V>
+  V off_product_descending(int body, const std::vector<V>& x) const {
+    V sum = V::Zero();
     const int begin = row_begin[size_t(body)];
     for (int k = row_begin[size_t(body) + 1] - 1; k >= begin; --k)
       row_block[size_t(k)].add_product(x[size_t(row_column[size_t(k)])], sum);
@@ -181,6 +186,7 @@ struct BlockMatrix {
   }
   // y = A x, in parallel by rows (the same bits on any number of threads).
   void multiply(const BlockVector& x, BlockVector& y) const;
+  void multiply(const BlockVectorF& x, BlockVectorF& y) const;
 };
 
 // The distinct unordered pairs among `edges` (pairs of bodies), numbered in order of first
@@ -203,5 +209,6 @@ Groups group_by(const std::vector<int>& key, int n_keys);
 
 // sum of a_i . b_i, in a fixed order (parallel_sum's chunks).
 double dot(const BlockVector& a, const BlockVector& b);
+double dot(const BlockVectorF& a, const BlockVectorF& b);  // summed in double
 
 }  // namespace primo

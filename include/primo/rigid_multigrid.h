@@ -59,7 +59,9 @@ class RigidMultigrid {
   // positions (by row), projects it onto every level and factorizes. False when a diagonal block or
   // the coarsest matrix is not positive definite (the cycle is then not to be used).
   bool set_matrix(const BlockMatrix& fine, const std::vector<Vec3>& position);
-  // z = M^-1 r: one V-cycle.
+  // z = M^-1 r: one cycle, in single precision: a preconditioner needs a few digits, and with
+  // half the bytes and no conversions a cycle at 192,000 bodies took 54 instead of 64 ms
+  // (medians of 8 alternating runs), with the same iterations at 240k faces.
   void apply(const BlockVector& r, BlockVector& z);
 
   int levels() const;  // including the fine level
@@ -68,9 +70,9 @@ class RigidMultigrid {
  private:
   struct Level;
   struct Coarsest;
-  void cycle(size_t l, const BlockVector& rhs, BlockVector& x);
+  void cycle(size_t l, const BlockVectorF& rhs, BlockVectorF& x);
   void krylov_correction(size_t l);  // level l's `x` from its `rhs`
-  void sweep(const Level& level, const BlockVector& rhs, BlockVector& x, bool forward) const;
+  void sweep(const Level& level, const BlockVectorF& rhs, BlockVectorF& x, bool forward) const;
 
   MultigridOptions options_;
   std::vector<std::unique_ptr<Level>> levels_;  // fine first

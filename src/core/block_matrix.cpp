@@ -37,12 +37,19 @@ void BlockMatrix::set_structure(int n, std::vector<std::pair<int, int>> coupled_
   }
 }
 
-void BlockMatrix::multiply(const BlockVector& x, BlockVector& y) const {
-  y.resize(diag.size());
-  parallel_chunks(diag.size(), kParallelGrain / 4, [&](size_t begin, size_t end) {
-    for (size_t b = begin; b < end; ++b)
-      y[b] = times(diag[b], x[b]) + off_product(int(b), x);
+namespace {
+template <class V>
+void multiply_rows(const BlockMatrix& a, const std::vector<V>& x, std::vector<V>& y) {
+  y.resize(a.diag.size());
+  parallel_chunks(a.diag.size(), kParallelGrain / 4, [&](size_t begin, size_t end) {
+    for (size_t b = begin; b < end; ++b) y[b] = times(a.diag[b], x[b]) + a.off_product(int(b), x);
   });
+}
+}  // namespace
+
+void BlockMatrix::multiply(const BlockVector& x, BlockVector& y) const { multiply_rows(*this, x, y); }
+void BlockMatrix::multiply(const BlockVectorF& x, BlockVectorF& y) const {
+  multiply_rows(*this, x, y);
 }
 
 PairNumbering number_pairs(const std::vector<std::pair<int, int>>& edges) {
@@ -104,6 +111,14 @@ double dot(const BlockVector& a, const BlockVector& b) {
   return parallel_sum(a.size(), kParallelGrain, 0.0, [&](size_t begin, size_t end) {
     double sum = 0.0;
     for (size_t i = begin; i < end; ++i) sum += a[i].dot(b[i]);
+    return sum;
+  });
+}
+
+double dot(const BlockVectorF& a, const BlockVectorF& b) {
+  return parallel_sum(a.size(), kParallelGrain, 0.0, [&](size_t begin, size_t end) {
+    double sum = 0.0;
+    for (size_t i = begin; i < end; ++i) sum += double(a[i].dot(b[i]));
     return sum;
   });
 }

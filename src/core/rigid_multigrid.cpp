@@ -120,8 +120,9 @@ struct RigidMultigrid::Level {
       position[c] = sum / double(children.begin[c + 1] - children.begin[c]);
     }
   }
-  BlockVector rhs, x, residual;
-  BlockVector krylov[5];  // work vectors of the K-cycle's coarse correction
+  std::vector<Eigen::Vector3f> arm_f;  // `arm` for the cycle's transfers
+  BlockVectorF rhs, x, residual;
+  BlockVectorF krylov[5];  // work vectors of the K-cycle's coarse correction
 };
 
 struct RigidMultigrid::Coarsest {
@@ -280,8 +281,11 @@ bool RigidMultigrid::set_matrix(const BlockMatrix& fine, const std::vector<Vec3>
     // The clusters' points and the bodies' arms from them.
     coarse.take_mean_positions(finer);
     finer.arm.resize(finer.parent.size());
-    for (size_t b = 0; b < finer.parent.size(); ++b)
+    finer.arm_f.resize(finer.parent.size());
+    for (size_t b = 0; b < finer.parent.size(); ++b) {
       finer.arm[b] = finer.position[b] - coarse.position[size_t(finer.parent[b])];
+      finer.arm_f[b] = finer.arm[b].cast<float>();
+    }
     BlockMatrix& m = coarse.own;
     parallel_chunks(size_t(nc), kParallelGrain / 8, [&](size_t begin, size_t end) {
       const int internal_end = coarse.internal.begin[end];  // prefetches stay in the chunk
@@ -365,7 +369,7 @@ bool RigidMultigrid::set_matrix(const BlockMatrix& fine, const std::vector<Vec3>
   return ok && co.factor.info() == Eigen::Success;
 }
 
-void RigidMultigrid::sweep(const Level& level, const BlockVector& rhs, BlockVector& x,
+void RigidMultigrid::sweep(const Level& level, const BlockVectorF& rhs, BlockVectorF& x,
                            bool forward) const {
   const BlockMatrix& a = *level.matrix;
   const auto& colours = level.partition.colours;
@@ -381,23 +385,23 @@ void RigidMultigrid::sweep(const Level& level, const BlockVector& rhs, BlockVect
         if (i + kPrefetchRows < m)
           prefetch_row(a, level.diag_inverse,
                        part[forward ? i + kPrefetchRows : m - 1 - kPrefetchRows - i]);
-        const Vec6 off = forward ? a.off_product(b, x) : a.off_product_descending(b, x);
-        x[size_t(b)] = times(level.diag_inverse[size_t(b)], rhs[size_t(b)] - off);
+        const Vec6f off = forward ? a.off_product(b, x) : a.off_product_descending(b, x);
+        x[size_t(b)] = times(level.diag_inverse[size_t(b)], Vec6f(rhs[size_t(b)] - off));
       }
     });
   }
 }
 
-void RigidMultigrid::cycle(size_t l, const BlockVector& rhs, BlockVector& x) {
+void RigidMultigrid::cycle(size_t l, const BlockVectorF& rhs, BlockVectorF& x) {
   Level& level = *levels_[l];
   const BlockMatrix& a = *level.matrix;
   const size_t n = a.diag.size();
-  x.assign(n, Vec6::Zero());
+  x.assign(n, Vec6f::Zero());
   if (l + 1 == levels_.size()) {
     Eigen::VectorXd b(6 * Eigen::Index(n));
-    for (size_t i = 0; i < n; ++i) b.segment<6>(6 * Eigen::Index(i)) = rhs[i];
+    for (size_t i = 0; i < n; ++i) b.segment<6>(6 * Eigen::Index(i)) = rhs[i].cast<double>();
     const Eigen::VectorXd solution = coarsest_->factor.solve(b);
-    for (size_t i = 0; i < n; ++i) x[i] = solution.segment<6>(6 * Eigen::Index(i));
+    for (size_t i = 0; i < n; ++i) x[i] = solution.segment<6>(6 * Eigen::Index(i)).cast<float>();
     return;
   }
   for (int s = 0; s < options_.smoothing_sweeps; ++s) sweep(level, rhs, x, true);
@@ -411,12 +415,12 @@ void RigidMultigrid::cycle(size_t l, const BlockVector& rhs, BlockVector& x) {
   coarse.rhs.resize(nc);
   parallel_chunks(nc, kParallelGrain / 8, [&](size_t begin, size_t end) {
     for (size_t c = begin; c < end; ++c) {
-      Vec6 sum = Vec6::Zero();
+      Vec6f sum = Vec6f::Zero();
       for (int k = coarse.children.begin[c]; k < coarse.children.begin[c + 1]; ++k) {
         const size_t b = size_t(coarse.children.items[size_t(k)]);
-        const Vec6& r = level.residual[b];
+        const Vec6f& r = level.residual[b];
         sum.head<3>() += r.head<3>();
-        sum.tail<3>() += level.arm[b].cross(Vec3(r.head<3>())) + r.tail<3>();
+        sum.tail<3>() += level.arm_f[b].cross(Eigen::Vector3f(r.head<3>())) + r.tail<3>();
       }
       coarse.rhs[c] = sum;
     }
@@ -427,8 +431,8 @@ void RigidMultigrid::cycle(size_t l, const BlockVector& rhs, BlockVector& x) {
     cycle(l + 1, coarse.rhs, coarse.x);
   parallel_chunks(n, kParallelGrain / 4, [&](size_t begin, size_t end) {
     for (size_t b = begin; b < end; ++b) {
-      const Vec6& c = coarse.x[size_t(level.parent[b])];
-      x[b].head<3>() += c.head<3>() + Vec3(c.tail<3>()).cross(level.arm[b]);
+      const Vec6f& c = coarse.x[size_t(level.parent[b])];
+      x[b].head<3>() += c.head<3>() + Eigen::Vector3f(c.tail<3>()).cross(level.arm_f[b]);
       x[b].tail<3>() += c.tail<3>();
     }
   });
@@ -443,16 +447,16 @@ void RigidMultigrid::krylov_correction(size_t l) {
   Level& level = *levels_[l];
   const BlockMatrix& a = level.own;
   const size_t n = a.diag.size();
-  const BlockVector& rhs = level.rhs;
-  BlockVector& v1 = level.krylov[0];
-  BlockVector& w1 = level.krylov[1];
-  BlockVector& r2 = level.krylov[2];
-  BlockVector& v2 = level.krylov[3];
-  BlockVector& w2 = level.krylov[4];
+  const BlockVectorF& rhs = level.rhs;
+  BlockVectorF& v1 = level.krylov[0];
+  BlockVectorF& w1 = level.krylov[1];
+  BlockVectorF& r2 = level.krylov[2];
+  BlockVectorF& v2 = level.krylov[3];
+  BlockVectorF& w2 = level.krylov[4];
   cycle(l, rhs, v1);
   a.multiply(v1, w1);
   const double rho1 = dot(v1, w1), alpha1 = dot(v1, rhs);
-  BlockVector& x = level.x;
+  BlockVectorF& x = level.x;
   x.resize(n);
   if (!(rho1 > 0.0)) {
     x = v1;
@@ -480,6 +484,18 @@ void RigidMultigrid::krylov_correction(size_t l) {
   });
 }
 
-void RigidMultigrid::apply(const BlockVector& r, BlockVector& z) { cycle(0, r, z); }
+void RigidMultigrid::apply(const BlockVector& r, BlockVector& z) {
+  Level& fine = *levels_[0];
+  const size_t n = r.size();
+  fine.rhs.resize(n);
+  parallel_chunks(n, kParallelGrain, [&](size_t begin, size_t end) {
+    for (size_t b = begin; b < end; ++b) fine.rhs[b] = r[b].cast<float>();
+  });
+  cycle(0, fine.rhs, fine.x);
+  z.resize(n);
+  parallel_chunks(n, kParallelGrain, [&](size_t begin, size_t end) {
+    for (size_t b = begin; b < end; ++b) z[b] = fine.x[b].cast<double>();
+  });
+}
 
 }  // namespace primo
