@@ -400,6 +400,7 @@ TEST(HierarchicalSolver, VCycleAndWCycleReachTheSameMinimum) {
     for (int reuse : {0, 8}) {
       SolveOptions o = hierarchical(1500, 1e-9, 150);
       o.hierarchical.newton_krylov_above = 0.0;  // every iteration a cycle
+      o.hierarchical.newton_krylov_below = 0.0;
       o.hierarchical.intermediate_cycles = cycles;
       o.hierarchical.coarse_factor_reuse = reuse;
       Deformer d(s.mesh, PrismParameters{}, s.handles);
@@ -463,6 +464,7 @@ TEST(HierarchicalSolver, AccelerationCutsCyclesAndKeepsTheMinimum) {
   for (int accelerated : {0, 1}) {
     SolveOptions o = hierarchical(3000, 1e-9, 300);
     o.hierarchical.newton_krylov_above = 0.0;  // cycles to the end
+    o.hierarchical.newton_krylov_below = 0.0;
     o.hierarchical.acceleration_history = accelerated ? 5 : 0;
     Deformer d(s.mesh, PrismParameters{}, s.handles);
     const SolveReport r = d.solve(o);
@@ -498,6 +500,7 @@ TEST(HierarchicalSolver, CyclesGivenTheEntryEnergyReturnTheTrueEnergy) {
   HierarchicalOptions options;
   options.hierarchy.coarsest_max_bodies = 300;
   options.newton_krylov_above = 0.0;  // cycles, not Newton-Krylov steps, from rest
+  options.newton_krylov_below = 0.0;  // nor near the minimum
   HierarchicalSolver told(sys, options), untold(sys, options);
   std::vector<BodyState> a = d.body_states(), b = a;
   double energy = sys.energy(a);
@@ -603,6 +606,7 @@ TEST(HierarchicalSolver, ASettleAfterADragKeepsItsCoarseFactorLongerAndTheMinimu
     frame.hierarchical.settle_factor_reuse = settle_reuse;
     frame.hierarchical.coarse_factor_reuse = 0;  // from afar: a fresh factor every step
     frame.hierarchical.newton_krylov_above = 0.0;  // cycles throughout, from afar too
+    frame.hierarchical.newton_krylov_below = 0.0;  // and near the minimum
     auto d = std::make_unique<Deformer>(s.mesh, PrismParameters{}, s.handles);
     for (int k = 1; k <= frames; ++k) {
       d->set_handle_transform(1, at(double(k) / frames));

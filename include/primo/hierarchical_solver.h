@@ -77,15 +77,13 @@ struct HierarchicalOptions {
   double exact_hessian_below = 1e-1;  // as SolveOptions::exact_hessian_below, for the coarsest level
   // Once the targets have stayed put for a few cycles and a cycle lowers the energy by less
   // than this fraction, iterations are Newton-Krylov steps on the fine level instead of
-  // cycles (newton_krylov.h): the cycles' tail converges linearly, Newton quadratically where
-  // the Hessian is well conditioned. A step that fails to lower the energy hands back to
-  // cycles until the targets move. 0 (the default): cycles only. Measured with 1e-3
-  // (docs/performance.md, "Newton-Krylov steps" and "A bound on each body's turn"): at 240k
-  // faces a drag settled in 1.6-2.0 s instead of 2.3-2.5 s and full solves from rest are
-  // faster on every mesh measured, but the 100k koala settled in 2.7-3.0 s instead of 2.0 s
-  // and the koala subdivided to 400k faces in 100 s instead of 13 s (Newton converges
-  // linearly near their drags' minima); so it stays an option.
-  double newton_krylov_below = 0.0;
+  // cycles (newton_krylov.h): the cycles' tail converges linearly, Newton's steps faster. A
+  // step that fails to lower the energy hands back to cycles until the targets move. 0:
+  // cycles only. On by default since the steps got cheaper (docs/performance.md, "Eleventh
+  // session"): the drag benchmark's settles took 1.5-1.7 instead of 2.1-2.9 s at 240k faces,
+  // 1.5-1.7 instead of 2.7-2.9 s on the 100k koala, 0.32-0.33 instead of 0.35-0.52 s on the
+  // armadillo, 0.072-0.077 instead of 0.047-0.052 s on the elephant.
+  double newton_krylov_below = 1e-3;
   // When the targets have stayed put for a few cycles and the last of them still lowered the
   // energy by more than this fraction, the state is far from the minimum (a jump or a solve
   // from rest, not a drag that followed the hand): the rest of that solve is Newton-Krylov
