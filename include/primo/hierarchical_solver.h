@@ -82,7 +82,8 @@ struct HierarchicalOptions {
   // cycles only. On by default since the steps got cheaper (docs/performance.md, "Eleventh
   // session"): the drag benchmark's settles took 1.5-1.7 instead of 2.1-2.9 s at 240k faces,
   // 1.5-1.7 instead of 2.7-2.9 s on the 100k koala, 0.32-0.33 instead of 0.35-0.52 s on the
-  // armadillo, 0.072-0.077 instead of 0.047-0.052 s on the elephant.
+  // armadillo, 0.072-0.077 instead of 0.047-0.052 s on the elephant, and 30 instead of 56 s
+  // on the koala subdivided to 400k faces (whose cycles stop 0.18% above the minimum).
   double newton_krylov_below = 1e-3;
   // When the targets have stayed put for a few cycles and the last of them still lowered the
   // energy by more than this fraction, the state is far from the minimum (a jump or a solve
