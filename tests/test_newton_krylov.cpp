@@ -461,7 +461,10 @@ TEST(NewtonKrylov, AnInterruptedStepLeavesTheStateAsItWas) {
   std::vector<BodyState> state = d.body_states();
   const std::vector<BodyState> before = state;
   const double energy = d.system().energy(state);
-  for (const int allowed : {0, 1}) {  // before the step, and before its first CG iteration
+  // Before the step; then, the first answer being no, after the row order; after the
+  // Hessian's pattern (the row order kept from the step before); and before the first
+  // conjugate-gradient iteration (the whole structure kept).
+  for (const int allowed : {0, 1, 1, 1}) {
     int asked = 0;
     const NewtonKrylovStep step = solver.iterate(state, energy, [&] { return ++asked > allowed; });
     EXPECT_TRUE(step.interrupted) << allowed;
@@ -472,10 +475,28 @@ TEST(NewtonKrylov, AnInterruptedStepLeavesTheStateAsItWas) {
       ASSERT_EQ(state[b].rotation, before[b].rotation);
     }
   }
-  // Never asked to stop: a step as without the question.
+  // Never asked to stop: the same step as a solver never interrupted.
   const NewtonKrylovStep step = solver.iterate(state, energy, [] { return false; });
   EXPECT_FALSE(step.interrupted);
   EXPECT_TRUE(step.decreased);
+  std::vector<BodyState> fresh_state = before;
+  NewtonKrylov never_interrupted(d.system());
+  int asked = 0;
+  const NewtonKrylovStep fresh = never_interrupted.iterate(fresh_state, energy, [&] {
+    ++asked;
+    return false;
+  });
+  EXPECT_EQ(step.energy_after, fresh.energy_after);
+  EXPECT_EQ(step.cg_iterations, fresh.cg_iterations);
+  // A first step asks before it, between the structure's three parts and before each
+  // conjugate-gradient iteration; a later step has its structure.
+  EXPECT_EQ(asked, 3 + fresh.cg_iterations);
+  asked = 0;
+  const NewtonKrylovStep next = never_interrupted.iterate(fresh_state, fresh.energy_after, [&] {
+    ++asked;
+    return false;
+  });
+  EXPECT_EQ(asked, 1 + next.cg_iterations);
 }
 
 TEST(NewtonKrylov, AnInterruptedSolveStopsInAStepAndSolvesOnToTheSameMinimum) {

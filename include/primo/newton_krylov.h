@@ -70,8 +70,10 @@ class NewtonKrylov {
   NewtonKrylov& operator=(const NewtonKrylov&) = delete;
 
   // One step from `state` (updated in place when the energy decreased); `energy_before` is the
-  // energy of `state` (computed when NaN). `interrupt`, when given, is asked before the step
-  // and before each conjugate-gradient iteration; true abandons the step.
+  // energy of `state` (computed when NaN). `interrupt`, when given, is asked before the step,
+  // between the parts of the first step's structure (the row order, the Hessian's pattern,
+  // the multigrid's levels) and before each conjugate-gradient iteration; true abandons the
+  // step (the parts of the structure built so far are kept for the next).
   NewtonKrylovStep iterate(std::vector<BodyState>& state, double energy_before,
                            const std::function<bool()>& interrupt = {});
 
