@@ -47,7 +47,9 @@ void multiply_rows(const BlockMatrix& a, const std::vector<V>& x, std::vector<V>
 }
 }  // namespace
 
-void BlockMatrix::multiply(const BlockVector& x, BlockVector& y) const { multiply_rows(*this, x, y); }
+void BlockMatrix::multiply(const BlockVector& x, BlockVector& y) const {
+  multiply_rows(*this, x, y);
+}
 void BlockMatrix::multiply(const BlockVectorF& x, BlockVectorF& y) const {
   multiply_rows(*this, x, y);
 }

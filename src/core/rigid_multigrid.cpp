@@ -85,9 +85,9 @@ bool spd_inverse(const Mat6& a, Mat6& inverse) {
 // cycle took 44 instead of 53 ms, in alternating runs).
 constexpr size_t kPrefetchRows = 3;
 void prefetch_row(const BlockMatrix& a, const std::vector<Mat6f>& diag_inverse, int row) {
-  prefetch_bytes(a.row_block.data() + a.row_begin[size_t(row)],
-                 size_t(a.row_begin[size_t(row) + 1] - a.row_begin[size_t(row)]) *
-                     sizeof(PairBlock));
+  prefetch_bytes(
+      a.row_block.data() + a.row_begin[size_t(row)],
+      size_t(a.row_begin[size_t(row) + 1] - a.row_begin[size_t(row)]) * sizeof(PairBlock));
   prefetch_bytes(&diag_inverse[size_t(row)], sizeof(Mat6f));
 }
 
@@ -301,10 +301,8 @@ bool RigidMultigrid::set_matrix(const BlockMatrix& fine, const std::vector<Vec3>
                            sizeof(PairBlock));
           const size_t p = size_t(coarse.internal.items[size_t(k)]);
           const auto [i, j] = a.pairs[p];
-          const Mat6 block = a.off(p)
-                                 .cast<double>()
-                                 .shifted(finer.arm[size_t(i)], finer.arm[size_t(j)])
-                                 .dense();
+          const Mat6 block =
+              a.off(p).cast<double>().shifted(finer.arm[size_t(i)], finer.arm[size_t(j)]).dense();
           sum += block + block.transpose();
         }
         m.diag[c] = sum.cast<BlockScalar>();
@@ -359,7 +357,8 @@ bool RigidMultigrid::set_matrix(const BlockMatrix& fine, const std::vector<Vec3>
   for (size_t p = 0; p < last.pairs.size(); ++p) {
     const Mat6 block = last.off(p).dense();
     for (int k = 0; k < 36; ++k)
-      if (co.off_slots[p][size_t(k)] >= 0) values[co.off_slots[p][size_t(k)]] += block(k / 6, k % 6);
+      if (co.off_slots[p][size_t(k)] >= 0)
+        values[co.off_slots[p][size_t(k)]] += block(k / 6, k % 6);
   }
   if (!co.analyzed) {
     co.factor.analyzePattern(co.matrix);
