@@ -129,6 +129,8 @@ struct alignas(16 * sizeof(Scalar)) PairBlockOf {  // one cache line in single p
   }
 };
 using PairBlock = PairBlockOf<BlockScalar>;
+using PairBlockSum = PairBlockOf<double>;  // to add many in
+
 // m x in the vector's precision for a block stored in single precision, column by column:
 // Eigen's m.cast<double>() * x took 12% longer in a product with the Hessian at 192,000 bodies.
 template <class T>
@@ -140,7 +142,6 @@ Eigen::Matrix<T, 6, 1> times(const Mat6f& m, const Eigen::Matrix<T, 6, 1>& x) {
   }
   return y;
 }
-using PairBlockSum = PairBlockOf<double>;  // to add many in
 
 struct BlockMatrix {
   std::vector<Mat6f> diag;

@@ -1,6 +1,7 @@
 #include "primo/newton_krylov.h"
 
 #include <cmath>
+#include <utility>
 
 #include "primo/parallel.h"
 #include "primo/rigid_hessian.h"
@@ -14,7 +15,7 @@ struct NewtonKrylov::Impl {
   // The structure, built by the first step in three parts with `interrupt` asked between
   // them: at 240k faces it takes 0.25-0.3 s, and the editor's settle must give way to a new
   // drag within a fraction of that.
-  std::vector<int> row_order;
+  std::vector<int> row_order;  // until the Hessian takes it
   std::unique_ptr<RigidHessian> hessian_storage;
   std::unique_ptr<RigidMultigrid> multigrid_storage;
   BlockVector x, r, z, p, q;
@@ -25,12 +26,12 @@ struct NewtonKrylov::Impl {
   // False when `interrupt` said so before the structure was complete (the parts built stay).
   bool build(const std::function<bool()>& interrupt) {
     auto interrupted = [&] { return interrupt && interrupt(); };
-    if (row_order.empty()) {
-      row_order = multigrid_row_order(sys);
-      if (interrupted()) return false;
-    }
     if (!hessian_storage) {
-      hessian_storage = std::make_unique<RigidHessian>(sys, row_order);
+      if (row_order.empty()) {
+        row_order = multigrid_row_order(sys);
+        if (interrupted()) return false;
+      }
+      hessian_storage = std::make_unique<RigidHessian>(sys, std::move(row_order));
       if (interrupted()) return false;
     }
     if (!multigrid_storage)
