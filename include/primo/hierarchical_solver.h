@@ -65,8 +65,9 @@ struct HierarchicalOptions {
   // 4.5%) at the same median frame; 8 was closer (4.3%) but slower (the background thread
   // shares the two cores), 16 further (4.8%).
   // drag_factor_lag -1: as many steps as the factorization needs on a background thread
-  // (estimated from its flop count against the fine level's work per step); 0: factorize in
-  // the foreground during drags too.
+  // (estimated from its flop count against the fine level's work per cycle, times the coarse
+  // steps a cycle makes: automatic_drag_factor_lag); 0: factorize in the foreground during
+  // drags too.
   int drag_factor_reuse = 12;
   int drag_factor_lag = -1;
   double intermediate_relaxation = 1.8;  // over-relaxation of intermediate sweeps (1: none)
@@ -153,6 +154,9 @@ class HierarchicalSolver {
   // Steps a background refactorization gets during a drag (0: none; with the automatic
   // setting, known after the first coarse factorization).
   int drag_factor_lag() const;
+  // Coarse Newton steps per cycle: coarse_iterations on every visit of the coarsest level,
+  // which each intermediate level visits intermediate_cycles times.
+  int coarse_steps_per_cycle() const;
   int bodies(int level) const;  // level 0 = fine
   // A level's system as its last restriction left it (level 0: the fine system).
   const RigidSystem& system(int level) const;
@@ -202,5 +206,11 @@ class HierarchicalSolver {
   std::optional<double> settle_start_decrease_;
   HierarchicalTimings timings_;
 };
+
+// The automatic HierarchicalOptions::drag_factor_lag, in coarse steps: the cycles a coarse
+// factorization of `factorization_flops` takes on a background thread beside cycles on
+// `fine_bodies` bodies, times the coarse steps per cycle, within [2, 16].
+int automatic_drag_factor_lag(double factorization_flops, int fine_bodies,
+                              int coarse_steps_per_cycle);
 
 }  // namespace primo

@@ -28,12 +28,16 @@ constexpr double kConfirmBelow = 1e-5;
 // at most this fraction (HierarchicalOptions::settle_factor_reuse): after the drag benchmark's
 // drags 1.3e-5 to 1e-4, from rest 0.1 to 0.6 (elephant, armadillo, koala).
 constexpr double kNearMinimumDecrease = 1e-2;
-// Automatic drag_factor_lag: the factorization's flops over this many per fine body, within
-// [2, 16] steps. Measured on two cores with the factorization sharing them with the cycles:
-// 8 steps hide a 3e8-flop factorization behind a 29k-face drag (one coarse step per frame),
-// 2 to 4 steps behind a 240k-face one (two per frame); longer lags let the drag fall behind
-// (factors serving 8 steps at 240k: 6.5% above the minimum with a lag of 8, 4.4% with 2).
-constexpr double kFlopsPerFineBodyStep = 1500.0;
+// Automatic drag_factor_lag: the factorization's flops over this many per fine body give the
+// cycles it takes on a background thread, times the coarse steps per cycle, within [2, 16]
+// steps. Measured on two cores with the factorization sharing them with the cycles: 8 steps
+// (8 cycles) hide a 3e8-flop factorization behind a 29k-face drag. A 240k-face drag makes two
+// coarse steps a cycle, and its 4.9e8-flop factorization took 230-300 ms beside cycles of
+// about 100 ms: with a lag of 2 steps (one cycle) the frame that needed the factor waited for
+// it (frames of 210-370 ms every sixth to tenth frame), with 4 the slowest frames were 180-200
+// ms, at the same distance to the minimum at the last frame (0.153% of the diagonal against
+// 0.150%; docs/performance.md, "Twelfth session").
+constexpr double kFlopsPerFineBodyCycle = 1500.0;
 constexpr int kMinAutoLag = 2, kMaxAutoLag = 16;
 double seconds_since(Clock::time_point t) {
   return std::chrono::duration<double>(Clock::now() - t).count();
@@ -242,7 +246,20 @@ int HierarchicalSolver::drag_factor_lag() const {
   if (options_.drag_factor_lag >= 0 || !coarse_solver_) return std::max(options_.drag_factor_lag, 0);
   const double flops = coarse_solver_->factorization_flops();
   if (flops <= 0.0) return 0;
-  const double steps = std::ceil(flops / (kFlopsPerFineBodyStep * fine_.n_bodies()));
+  return automatic_drag_factor_lag(flops, fine_.n_bodies(), coarse_steps_per_cycle());
+}
+
+int HierarchicalSolver::coarse_steps_per_cycle() const {
+  // The coarsest level is visited intermediate_cycles times per visit of the level above it.
+  int steps = options_.coarse_iterations;
+  for (size_t l = 1; l < levels_.size(); ++l) steps *= options_.intermediate_cycles;
+  return steps;
+}
+
+int automatic_drag_factor_lag(double factorization_flops, int fine_bodies,
+                              int coarse_steps_per_cycle) {
+  const double cycles = factorization_flops / (kFlopsPerFineBodyCycle * std::max(fine_bodies, 1));
+  const double steps = std::ceil(cycles * coarse_steps_per_cycle);
   return int(std::clamp(steps, double(kMinAutoLag), double(kMaxAutoLag)));
 }
 
