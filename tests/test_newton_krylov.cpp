@@ -287,9 +287,17 @@ TEST(RigidHessian, RowsInTheMultigridsOrderAreTheSameBlocksAndStepsMoveTheSameBo
   }
   const std::vector<BodyState> a = by_body.moved(state, d, 0.3),
                                b = by_row.moved(state, d_rows, 0.3);
+  // Into a buffer a line search kept (another state's, longer): every body written, the
+  // handles' too.
+  std::vector<BodyState> kept = by_row.moved(state, d_rows, -0.7);
+  kept.resize(kept.size() + 5, kept.front());
+  by_row.move_into(state, d_rows, 0.3, kept);
+  ASSERT_EQ(kept.size(), state.size());
   for (size_t k = 0; k < a.size(); ++k) {
     EXPECT_EQ(a[k].position, b[k].position);
     EXPECT_EQ(a[k].rotation, b[k].rotation);
+    EXPECT_EQ(kept[k].position, b[k].position);
+    EXPECT_EQ(kept[k].rotation, b[k].rotation);
   }
 }
 

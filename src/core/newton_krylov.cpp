@@ -20,6 +20,7 @@ struct NewtonKrylov::Impl {
   std::unique_ptr<RigidMultigrid> multigrid_storage;
   BlockVector x, r, z, p, q;
   std::vector<Vec3> position;
+  std::vector<BodyState> trial;  // the line search's, kept from step to step
 
   Impl(const RigidSystem& s, const NewtonKrylovOptions& o) : sys(s), options(o) {}
 
@@ -171,9 +172,11 @@ NewtonKrylovStep NewtonKrylov::iterate(std::vector<BodyState>& state, double ene
     step.largest_turn = m.largest_turn();
     step.turn_bounded = bounded;
     step.cg_iterations += iterations;
-    const HalvedStep found =
-        halve_until_lower(m.sys, state, step.energy_before, m.options.max_halvings,
-                          [&](double lambda) { return m.hessian().moved(state, m.x, lambda); });
+    const HalvedStep found = halve_until_lower(
+        m.sys, state, step.energy_before, m.options.max_halvings, m.trial,
+        [&](double lambda, std::vector<BodyState>& out) {
+          m.hessian().move_into(state, m.x, lambda, out);
+        });
     if (found.lambda > 0.0) {
       step.energy_after = found.energy;
       step.step_scale = found.lambda;

@@ -112,20 +112,22 @@ struct FeatureBlocks {
 };
 
 // A step's line search: lambda = 1, 1/2, ... (at most `max_halvings` halvings) until the state
-// moved(lambda) has an energy below `energy_before`; that state is swapped into `state`.
+// move_into(lambda, trial) writes into `trial` has an energy below `energy_before`; that state
+// is swapped into `state` (and `trial` keeps the old one's memory for the next search).
 // Returns the accepted lambda and its energy, or lambda 0 when none was lower.
 struct HalvedStep {
   double lambda = 0.0;
   double energy = 0.0;
   int evaluations = 0;
 };
-template <class Moved>
+template <class MoveInto>
 HalvedStep halve_until_lower(const RigidSystem& system, std::vector<BodyState>& state,
-                             double energy_before, int max_halvings, Moved&& moved) {
+                             double energy_before, int max_halvings,
+                             std::vector<BodyState>& trial, MoveInto&& move_into) {
   HalvedStep result;
   double lambda = 1.0;
   for (int halving = 0; halving <= max_halvings; ++halving, lambda *= 0.5) {
-    std::vector<BodyState> trial = moved(lambda);
+    move_into(lambda, trial);
     const double e = system.energy(trial);
     ++result.evaluations;
     if (e < energy_before) {

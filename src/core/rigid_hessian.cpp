@@ -197,17 +197,23 @@ void RigidHessian::assemble(const std::vector<BodyState>& state, bool second_ord
 
 std::vector<BodyState> RigidHessian::moved(const std::vector<BodyState>& state,
                                            const BlockVector& step, double lambda) const {
-  std::vector<BodyState> next = state;
+  std::vector<BodyState> next;
+  move_into(state, step, lambda, next);
+  return next;
+}
+
+void RigidHessian::move_into(const std::vector<BodyState>& state, const BlockVector& step,
+                             double lambda, std::vector<BodyState>& out) const {
+  out.resize(state.size());
   parallel_chunks(state.size(), kParallelGrain, [&](size_t begin, size_t end) {
     for (size_t row = begin; row < end; ++row) {
       const size_t b = size_t(order_[row]);
       const Vec6 d = lambda * step[row];
-      if (mask_[row] & 0x38)
-        next[b].rotation = rotation_from_vector(d.tail<3>()) * state[b].rotation;
-      if (mask_[row] & 0x07) next[b].position = state[b].position + d.head<3>();
+      out[b] = state[b];
+      if (mask_[row] & 0x38) out[b].rotation = rotation_from_vector(d.tail<3>()) * state[b].rotation;
+      if (mask_[row] & 0x07) out[b].position = state[b].position + d.head<3>();
     }
   });
-  return next;
 }
 
 }  // namespace primo
