@@ -77,6 +77,21 @@ TEST(SweepPlan, JointsBetweenTheSameBodiesArePackedIntoOne) {
     for (int k = plan.joint_begin[b]; k < plan.joint_begin[b + 1]; ++k)
       for (int m = k + 1; m < plan.joint_begin[b + 1]; ++m)
         EXPECT_NE(plan.joints[k].other, plan.joints[m].other) << "body " << b;
+  // Each coupling side's slot is its body's entry for the coupling's other body, and a body's
+  // entries follow the order in which its couplings first reach each neighbour.
+  for (int b = 0; b < g.system.n_bodies(); ++b) {
+    int next = plan.joint_begin[b];
+    for (int k = g.system.coupling_begin[b]; k < g.system.coupling_begin[b + 1]; ++k) {
+      const auto [ci, side] = g.system.body_couplings[k];
+      const int slot = plan.joint_slot[k];
+      ASSERT_GE(slot, plan.joint_begin[b]);
+      ASSERT_LT(slot, plan.joint_begin[b + 1]);
+      EXPECT_EQ(plan.joints[slot].other, g.system.couplings[ci].body[1 - side]) << "body " << b;
+      EXPECT_LE(slot, next) << "body " << b;  // a new neighbour takes the next entry
+      if (slot == next) ++next;
+    }
+    EXPECT_EQ(next, plan.joint_begin[b + 1]) << "body " << b << ": an entry no coupling uses";
+  }
 }
 
 TEST(SweepPlan, PlannedSweepMatchesThePlainSweep) {

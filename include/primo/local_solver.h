@@ -34,6 +34,9 @@ struct SweepPlan {
   std::vector<std::vector<int>> parts;    // each part's bodies, in index order
   std::vector<std::vector<int>> colours;  // each colour's parts, in index order
   struct PackedJoint {
+    // Not initialized (as Eigen's fixed-size members are not): the plan writes its entries
+    // in parallel, which faults their pages in on every core.
+    PackedJoint() {}
     int other;         // the body on the other side
     double weight;     // sums over the joints between the two bodies:
     Vec3 own_mean;     // weight * own side's mean (body coordinates)

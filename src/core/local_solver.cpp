@@ -175,26 +175,51 @@ SweepPlan plan_sweep(const RigidSystem& system, bool parallel) {
 namespace {
 
 // One packed entry per pair of coupled bodies: the slots of body b's couplings, in the order
-// of their other bodies' first appearance.
+// of their other bodies' first appearance. Two parallel passes (count each body's entries,
+// then write them where the counts put them): at 240k faces the fine plan's entries are about
+// 70 MB, and most of the 64 ms a serial pass took went to faulting their pages in (48 ms on
+// two threads, 87 on one).
 void build_joint_slots(SweepPlan& plan, const RigidSystem& system) {
   const int n = system.n_bodies();
-  plan.joint_begin.assign(n + 1, 0);
-  plan.joint_slot.resize(system.body_couplings.size());
-  plan.joints.clear();
-  plan.joints.reserve(system.body_couplings.size());  // at most one per coupling side
-  for (int b = 0; b < n; ++b) {
-    const int first = plan.joint_begin[b] = int(plan.joints.size());
-    for (int k = system.coupling_begin[b]; k < system.coupling_begin[b + 1]; ++k) {
-      const auto [ci, side] = system.body_couplings[k];
-      const int other = system.couplings[ci].body[1 - side];
-      int slot = first;
-      while (slot < int(plan.joints.size()) && plan.joints[slot].other != other) ++slot;
-      if (slot == int(plan.joints.size()))
-        plan.joints.push_back({other, 0.0, Vec3::Zero(), Vec3::Zero(), Mat3::Zero()});
-      plan.joint_slot[k] = slot;
+  // Body b's couplings' other bodies into `other`, and each one's slot (counted from the
+  // body's first) into `slot`; returns the number of distinct other bodies.
+  auto slots_of = [&](int b, std::vector<int>& other, std::vector<int>& slot) {
+    const int begin = system.coupling_begin[b], count = system.coupling_begin[b + 1] - begin;
+    other.resize(size_t(count));
+    slot.resize(size_t(count));
+    int distinct = 0;
+    for (int k = 0; k < count; ++k) {
+      const auto [ci, side] = system.body_couplings[size_t(begin + k)];
+      other[k] = system.couplings[ci].body[1 - side];
+      int m = 0;
+      while (m < k && other[m] != other[k]) ++m;
+      slot[k] = m < k ? slot[m] : distinct++;
     }
-  }
-  plan.joint_begin[n] = int(plan.joints.size());
+    return distinct;
+  };
+  plan.joint_begin.assign(n + 1, 0);
+  parallel_chunks(size_t(n), kParallelGrain, [&](size_t begin, size_t end) {
+    std::vector<int> other, slot;
+    for (size_t b = begin; b < end; ++b) plan.joint_begin[b + 1] = slots_of(int(b), other, slot);
+  });
+  for (int b = 0; b < n; ++b) plan.joint_begin[b + 1] += plan.joint_begin[b];
+  plan.joint_slot.resize(system.body_couplings.size());
+  plan.joints.resize(size_t(plan.joint_begin[n]));  // not initialized: written below, in parallel
+  parallel_chunks(size_t(n), kParallelGrain, [&](size_t begin, size_t end) {
+    std::vector<int> other, slot;
+    for (size_t b = begin; b < end; ++b) {
+      slots_of(int(b), other, slot);
+      for (size_t k = 0; k < slot.size(); ++k) {
+        const int s = plan.joint_begin[b] + slot[k];
+        plan.joint_slot[size_t(system.coupling_begin[b]) + k] = s;
+        SweepPlan::PackedJoint& j = plan.joints[size_t(s)];
+        j.other = other[k];  // the same for a repeat
+        j.weight = 0.0;
+        j.own_mean = j.other_mean = Vec3::Zero();
+        j.cross = Mat3::Zero();
+      }
+    }
+  });
 }
 
 }  // namespace
