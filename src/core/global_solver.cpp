@@ -604,11 +604,11 @@ GlobalStep GlobalSolver::iterate(std::vector<BodyState>& state, bool exact_hessi
       ~AddTime() { total += seconds_since(start); }
     } add_time{m.timings.line_search, search_start};
     std::vector<BodyState> trial;
-    const HalvedStep found = halve_until_lower(
-        m.sys, state, step.energy_before, max_halvings, trial,
-        [&](double lambda, std::vector<BodyState>& out) {
-          out = m.apply(state, delta, lambda, exact);
-        });
+    const HalvedStep found =
+        halve_until_lower(m.sys, state, step.energy_before, max_halvings, trial,
+                          [&](double lambda, std::vector<BodyState>& out) {
+                            out = m.apply(state, delta, lambda, exact);
+                          });
     m.timings.energy_evaluations += found.evaluations;
     if (found.lambda == 0.0) return false;
     step.energy_after = found.energy;

@@ -172,11 +172,11 @@ NewtonKrylovStep NewtonKrylov::iterate(std::vector<BodyState>& state, double ene
     step.largest_turn = m.largest_turn();
     step.turn_bounded = bounded;
     step.cg_iterations += iterations;
-    const HalvedStep found = halve_until_lower(
-        m.sys, state, step.energy_before, m.options.max_halvings, m.trial,
-        [&](double lambda, std::vector<BodyState>& out) {
-          m.hessian().move_into(state, m.x, lambda, out);
-        });
+    const HalvedStep found =
+        halve_until_lower(m.sys, state, step.energy_before, m.options.max_halvings, m.trial,
+                          [&](double lambda, std::vector<BodyState>& out) {
+                            m.hessian().move_into(state, m.x, lambda, out);
+                          });
     if (found.lambda > 0.0) {
       step.energy_after = found.energy;
       step.step_scale = found.lambda;

@@ -122,8 +122,8 @@ struct HalvedStep {
 };
 template <class MoveInto>
 HalvedStep halve_until_lower(const RigidSystem& system, std::vector<BodyState>& state,
-                             double energy_before, int max_halvings,
-                             std::vector<BodyState>& trial, MoveInto&& move_into) {
+                             double energy_before, int max_halvings, std::vector<BodyState>& trial,
+                             MoveInto&& move_into) {
   HalvedStep result;
   double lambda = 1.0;
   for (int halving = 0; halving <= max_halvings; ++halving, lambda *= 0.5) {

@@ -210,7 +210,8 @@ void RigidHessian::move_into(const std::vector<BodyState>& state, const BlockVec
       const size_t b = size_t(order_[row]);
       const Vec6 d = lambda * step[row];
       out[b] = state[b];
-      if (mask_[row] & 0x38) out[b].rotation = rotation_from_vector(d.tail<3>()) * state[b].rotation;
+      if (mask_[row] & 0x38)
+        out[b].rotation = rotation_from_vector(d.tail<3>()) * state[b].rotation;
       if (mask_[row] & 0x07) out[b].position = state[b].position + d.head<3>();
     }
   });
