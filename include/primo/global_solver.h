@@ -93,6 +93,8 @@ class GlobalSolver {
   int n_dofs() const;
   // Floating-point operations of the last foreground supernodal factorization (0 before one).
   double factorization_flops() const;
+  // Whether a factor is there to reuse (the next reusing step need not factorize).
+  bool has_factor() const;
   const GlobalSolverTimings& timings() const;
   void reset_timings();
 

@@ -165,6 +165,12 @@ class HierarchicalSolver {
   // Frees the Newton-Krylov steps' matrices and vectors (about 300 MB at 240k faces) once a
   // solve has converged; the next solve that settles makes them again (about 0.25 s there).
   void release_newton_krylov() { newton_krylov_.reset(); }
+  // The iterations the caller means to run on the current targets (a drag's frame: 1). A solve
+  // of more than the cycles a drag counts will most likely take Newton-Krylov steps; when its
+  // coarse level must factorize in the foreground (on one thread: about 0.2 s at 240k faces),
+  // the steps' structure is built beside it, in parallel, instead of in the first step.
+  void set_iterations_ahead(int iterations) { iterations_ahead_ = iterations; }
+  bool newton_krylov_ready() const { return newton_krylov_ && newton_krylov_->structure_built(); }
 
  private:
   struct Level;
@@ -196,6 +202,7 @@ class HierarchicalSolver {
   std::vector<BodyState> cycle_input_, proposal_;
   int cycles_since_restart_ = 0;
   std::unique_ptr<NewtonKrylov> newton_krylov_;  // made on first use
+  int iterations_ahead_ = 1;
   bool krylov_failed_ = false;    // a step did not lower the energy since the targets moved
   double last_decrease_ = 1.0;    // relative energy decrease of the last iteration
   bool last_was_newton_ = false;  // the last iteration was a Newton-Krylov step

@@ -76,6 +76,11 @@ class NewtonKrylov {
   // step (the parts of the structure built so far are kept for the next).
   NewtonKrylovStep iterate(std::vector<BodyState>& state, double energy_before,
                            const std::function<bool()>& interrupt = {});
+  // Builds the steps' structure now (what the first step would build), without asking
+  // anyone: the hierarchical solver builds it beside a coarse factorization that leaves a
+  // core idle (HierarchicalSolver::set_iterations_ahead).
+  void build_structure();
+  bool structure_built() const;
 
  private:
   struct Impl;

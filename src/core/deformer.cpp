@@ -425,6 +425,7 @@ std::optional<double> Deformer::iterate(const SolveOptions& options, double e,
   if (options.method == SolveMethod::Hierarchical) {
     hierarchical_->set_coarse_correction_callback(options.on_coarse_correction);
     hierarchical_->set_interrupt(options.interrupt);
+    hierarchical_->set_iterations_ahead(options.max_iterations);
     const double energy = hierarchical_->cycle(state_, e);
     hierarchical_->set_coarse_correction_callback({});
     hierarchical_->set_interrupt({});

@@ -551,6 +551,7 @@ GlobalSolver::~GlobalSolver() = default;
 
 int GlobalSolver::n_dofs() const { return impl_->n; }
 double GlobalSolver::factorization_flops() const { return impl_->factorization_flops; }
+bool GlobalSolver::has_factor() const { return impl_->has_factor; }
 
 void GlobalSolver::set_body_frames(const std::vector<Mat3>* frames) {
   impl_->frames = frames;

@@ -411,14 +411,36 @@ void HierarchicalSolver::solve_level(int l) {
     coarse_solver_->set_factor_reuse(reuse, moving ? lag : 0);
     // coarse_factor_reuse 0 makes a drag's steps factorize too.
     const bool reusing = moving ? options_.coarse_factor_reuse > 0 : reuse > 0;
-    for (int it = 0; it < options_.coarse_iterations; ++it) {
+    // One coarse Newton iteration; false when it did not lower the energy.
+    auto coarse_step = [&] {
       const GlobalStep step = coarse_solver_->iterate(level.correction, coarse_exact_, reusing);
       coarse_exact_ = options_.exact_hessian_below > 0 && step.decreased &&
                       step.step_scale == 1.0 &&
                       step.energy_before - step.energy_after <
                           options_.exact_hessian_below * step.energy_before;
-      if (!step.decreased) break;
+      return step.decreased;
+    };
+    int done = 0;
+    // A solve that will take steps builds their structure beside a foreground factorization
+    // (one thread): the same structure, built while a core would wait.
+    const bool steps_likely =
+        iterations_ahead_ > kMovingCycles + 1 &&
+        (options_.newton_krylov_above > 0.0 || options_.newton_krylov_below > 0.0);
+    if (steps_likely && options_.coarse_iterations > 0 && !coarse_solver_->has_factor() &&
+        !newton_krylov_ready()) {
+      if (!newton_krylov_)
+        newton_krylov_ = std::make_unique<NewtonKrylov>(fine_, options_.newton_krylov);
+      bool decreased = false;
+      parallel_tasks(2, [&](size_t task) {
+        if (task == 0)
+          decreased = coarse_step();
+        else
+          newton_krylov_->build_structure();
+      });
+      done = decreased ? 1 : options_.coarse_iterations;
     }
+    for (int it = done; it < options_.coarse_iterations; ++it)
+      if (!coarse_step()) break;
     timings_.coarse += seconds_since(t);
     return;
   }

@@ -142,6 +142,9 @@ NewtonKrylov::NewtonKrylov(const RigidSystem& system, const NewtonKrylovOptions&
     : impl_(std::make_unique<Impl>(system, options)) {}
 NewtonKrylov::~NewtonKrylov() = default;
 
+void NewtonKrylov::build_structure() { impl_->build({}); }
+bool NewtonKrylov::structure_built() const { return impl_->multigrid_storage != nullptr; }
+
 NewtonKrylovStep NewtonKrylov::iterate(std::vector<BodyState>& state, double energy_before,
                                        const std::function<bool()>& interrupt) {
   Impl& m = *impl_;
