@@ -39,6 +39,14 @@ Posed posed_cylinder(int around, int rings, int global_iterations) {
   return {std::move(c), std::move(d)};
 }
 
+// `state` moved by lambda * step (by the Hessian's rows) into a fresh vector.
+std::vector<BodyState> moved(const RigidHessian& hessian, const std::vector<BodyState>& state,
+                             const BlockVector& step, double lambda) {
+  std::vector<BodyState> out;
+  hessian.move_into(state, step, lambda, out);
+  return out;
+}
+
 // Random in every dof a body has: all six when free, omega when its position is pinned, v
 // when its rotation is fixed.
 BlockVector random_direction(const RigidSystem& system, unsigned seed) {
@@ -103,8 +111,8 @@ TEST(RigidHessian, GradientAndExactHessianMatchFiniteDifferencesOfTheEnergy) {
   const BlockVector d = random_direction(sys, 7);
   const double h = 1e-4;
   const double e0 = sys.energy(state);
-  const double e_plus = sys.energy(hessian.moved(state, d, h));
-  const double e_minus = sys.energy(hessian.moved(state, d, -h));
+  const double e_plus = sys.energy(moved(hessian, state, d, h));
+  const double e_minus = sys.energy(moved(hessian, state, d, -h));
   // Along exp(t d) the first derivative is 2 g . d and the second 2 d^T H d (a one-parameter
   // subgroup per body): g and H are those of E / 2, as in global matching's normal equations.
   const double slope = 2 * dot(hessian.gradient(), d);
@@ -285,11 +293,11 @@ TEST(RigidHessian, RowsInTheMultigridsOrderAreTheSameBlocksAndStepsMoveTheSameBo
     ASSERT_LT((hd_rows[r] - hd[b]).norm(), 1e-12 * (1.0 + hd[b].norm())) << "row " << r;
     ASSERT_EQ(by_row.gradient()[r], by_body.gradient()[b]) << "row " << r;
   }
-  const std::vector<BodyState> a = by_body.moved(state, d, 0.3),
-                               b = by_row.moved(state, d_rows, 0.3);
+  const std::vector<BodyState> a = moved(by_body, state, d, 0.3),
+                               b = moved(by_row, state, d_rows, 0.3);
   // Into a buffer a line search kept (another state's, longer): every body written, the
   // handles' too.
-  std::vector<BodyState> kept = by_row.moved(state, d_rows, -0.7);
+  std::vector<BodyState> kept = moved(by_row, state, d_rows, -0.7);
   kept.resize(kept.size() + 5, kept.front());
   by_row.move_into(state, d_rows, 0.3, kept);
   ASSERT_EQ(kept.size(), state.size());
@@ -602,8 +610,8 @@ TEST(NewtonKrylov, PinnedAndTurnedHandlesAndSpringsKeepTheirDerivativesAndTheFla
     hessian.assemble(rest, true);
     const BlockVector d = random_direction(sys, 11);
     const double h = 1e-4;
-    const double e0 = sys.energy(rest), e_plus = sys.energy(hessian.moved(rest, d, h)),
-                 e_minus = sys.energy(hessian.moved(rest, d, -h));
+    const double e0 = sys.energy(rest), e_plus = sys.energy(moved(hessian, rest, d, h)),
+                 e_minus = sys.energy(moved(hessian, rest, d, -h));
     EXPECT_NEAR(2 * dot(hessian.gradient(), d), (e_plus - e_minus) / (2 * h),
                 1e-6 * std::abs(e_plus - e_minus) / (2 * h));
     BlockVector hd;

@@ -30,12 +30,10 @@ class RigidHessian {
   const BlockMatrix& matrix() const { return matrix_; }
   const BlockVector& gradient() const { return gradient_; }
   const std::vector<int>& order() const { return order_; }  // the body of each row
-  // `state` (by body) moved by lambda * step (by row): rotations through the exponential map,
-  // positions along v.
-  std::vector<BodyState> moved(const std::vector<BodyState>& state, const BlockVector& step,
-                               double lambda) const;
-  // The same into `out` (resized to fit): a line search that keeps `out` between steps writes
-  // into memory it has, where a fresh vector (23 MB at 240k faces) is fresh pages to fault in.
+  // `state` (by body) moved by lambda * step (by row) into `out` (resized to fit): rotations
+  // through the exponential map, positions along v. A line search that keeps `out` between
+  // steps writes into memory it has, where a fresh vector (23 MB at 240k faces) is fresh
+  // pages to fault in.
   void move_into(const std::vector<BodyState>& state, const BlockVector& step, double lambda,
                  std::vector<BodyState>& out) const;
 

@@ -109,20 +109,18 @@ Groups group_by(const std::vector<int>& key, int n_keys) {
   return groups;
 }
 
-double dot(const BlockVector& a, const BlockVector& b) {
-  return parallel_sum(a.size(), kParallelGrain, 0.0, [&](size_t begin, size_t end) {
-    double sum = 0.0;
-    for (size_t i = begin; i < end; ++i) sum += a[i].dot(b[i]);
-    return sum;
-  });
-}
-
-double dot(const BlockVectorF& a, const BlockVectorF& b) {
+namespace {
+template <class V>
+double dot_rows(const std::vector<V>& a, const std::vector<V>& b) {
   return parallel_sum(a.size(), kParallelGrain, 0.0, [&](size_t begin, size_t end) {
     double sum = 0.0;
     for (size_t i = begin; i < end; ++i) sum += double(a[i].dot(b[i]));
     return sum;
   });
 }
+}  // namespace
+
+double dot(const BlockVector& a, const BlockVector& b) { return dot_rows(a, b); }
+double dot(const BlockVectorF& a, const BlockVectorF& b) { return dot_rows(a, b); }
 
 }  // namespace primo

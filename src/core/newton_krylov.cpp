@@ -13,8 +13,8 @@ struct NewtonKrylov::Impl {
   const RigidSystem& sys;
   NewtonKrylovOptions options;
   // The structure, built by the first step in three parts with `interrupt` asked between
-  // them: at 240k faces it takes 0.25-0.3 s, and the editor's settle must give way to a new
-  // drag within a fraction of that.
+  // them (at 240k faces it takes 0.25-0.3 s, and the editor's settle must give way to a new
+  // drag within a fraction of that), or at once by build_structure.
   std::vector<int> row_order;  // until the Hessian takes it
   std::unique_ptr<RigidHessian> hessian_storage;
   std::unique_ptr<RigidMultigrid> multigrid_storage;

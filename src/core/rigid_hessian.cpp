@@ -195,13 +195,6 @@ void RigidHessian::assemble(const std::vector<BodyState>& state, bool second_ord
   });
 }
 
-std::vector<BodyState> RigidHessian::moved(const std::vector<BodyState>& state,
-                                           const BlockVector& step, double lambda) const {
-  std::vector<BodyState> next;
-  move_into(state, step, lambda, next);
-  return next;
-}
-
 void RigidHessian::move_into(const std::vector<BodyState>& state, const BlockVector& step,
                              double lambda, std::vector<BodyState>& out) const {
   out.resize(state.size());
