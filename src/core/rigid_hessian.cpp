@@ -46,23 +46,15 @@ struct OwnSums {
   // arms p and d = x_own - x_other, sum w y_own x r = w p_own x d - sum w y_own x y_other and
   // sum w r y_own^T = sum w y_own y_own^T - K^T + w d p_own^T. Two 3x3 products a coupling
   // instead of eight rotated modes and four outer products each (twice as many as before, as
-  // every coupling is visited from both its bodies' rows).
+  // every coupling is visited from both its bodies' rows). The parts that do not depend on the
+  // state (w, w l, w l l^T) start the sums (RowConstants).
   void add_coupling(const Mat3& k, const Vec3& p_own, const Vec3& p_other, const Vec3& d,
-                    const PatchModes& own_local, double w) {
-    point_weight += w;
-    local_arm += w * own_local.mean;
+                    double w) {
     point_pull += w * (p_own - p_other + d);
     torque += w * p_own.cross(d) -
               Vec3(k(1, 2) - k(2, 1), k(2, 0) - k(0, 2), k(0, 1) - k(1, 0));  // axial(K^T - K)
     ry.noalias() += (w * d) * p_own.transpose();
     ry -= k.transpose();
-    auto add_mode = [&](const Vec3& l, double weight) {
-      local_yy.noalias() += (weight * l) * l.transpose();
-    };
-    add_mode(own_local.mean, w);
-    add_mode(own_local.du, w * kModeWeightDu);
-    add_mode(own_local.dv, w * kModeWeightDv);
-    add_mode(own_local.duv, w * kModeWeightDuv);
   }
 
   // h = [[W I, -[a]x], [[a]x, tr(YY) I - YY]], g = (sum w r, sum w y x r), and the
@@ -105,13 +97,40 @@ RigidHessian::RigidHessian(const RigidSystem& system, std::vector<int> order)
       b = row_of[size_t(b)];
     }
   PairNumbering numbering = number_pairs(edges);
-  coupling_pair_ = std::move(numbering.pair_of);
-  coupling_first_side_.assign(system.couplings.size(), -1);
-  for (size_t ci = 0; ci < system.couplings.size(); ++ci) {
-    const int pair = coupling_pair_[ci];
-    if (pair < 0) continue;
-    const int row0 = row_of[size_t(system.couplings[ci].body[0])];
-    coupling_first_side_[ci] = numbering.pairs[size_t(pair)].first == row0 ? 0 : 1;
+  // Each row's couplings, their terms numbered as the rows first meet them.
+  std::vector<int> terms_of(system.couplings.size(), -1);
+  terms_.reserve(system.couplings.size());
+  row_coupling_begin_.assign(size_t(n) + 1, 0);
+  row_couplings_.reserve(system.body_couplings.size());
+  row_constants_.resize(size_t(n));
+  for (int r = 0; r < n; ++r) {
+    const size_t b = size_t(order_[size_t(r)]);
+    RowConstants& constants = row_constants_[size_t(r)];
+    for (int k = system.coupling_begin[b]; k < system.coupling_begin[b + 1]; ++k) {
+      const auto [ci, side] = system.body_couplings[size_t(k)];
+      const RigidSystem::Coupling& c = system.couplings[size_t(ci)];
+      if (terms_of[size_t(ci)] < 0) {
+        terms_of[size_t(ci)] = int(terms_.size());
+        terms_.push_back({c.cross, {c.local[0].mean, c.local[1].mean}, c.weight});
+      }
+      const int pair = numbering.pair_of[size_t(ci)];
+      const bool writes_pair =
+          pair >= 0 && numbering.pairs[size_t(pair)].first == row_of[b];  // its first row
+      row_couplings_.push_back(
+          {terms_of[size_t(ci)], c.body[1 - side], side, writes_pair ? pair : -1});
+      const PatchModes& l = c.local[side];
+      const double w = c.weight;
+      constants.weight += w;
+      constants.arm += w * l.mean;
+      auto add_mode = [&](const Vec3& mode, double weight) {
+        constants.yy.noalias() += (weight * mode) * mode.transpose();
+      };
+      add_mode(l.mean, w);
+      add_mode(l.du, w * kModeWeightDu);
+      add_mode(l.dv, w * kModeWeightDv);
+      add_mode(l.duv, w * kModeWeightDuv);
+    }
+    row_coupling_begin_[size_t(r) + 1] = int(row_couplings_.size());
   }
   matrix_.set_structure(n, std::move(numbering.pairs));
   gradient_.assign(size_t(n), Vec6::Zero());
@@ -126,30 +145,33 @@ void RigidHessian::assemble(const std::vector<BodyState>& state, bool second_ord
     std::vector<std::pair<int, PairBlockSum>> crosses;  // this row's pairs' blocks
     for (size_t row = begin; row < end; ++row) {
       const size_t b = size_t(order_[row]);
-      if (row + kAssemblyAhead < end) {
-        const size_t ahead = size_t(order_[row + kAssemblyAhead]);
-        for (int k = sys.coupling_begin[ahead]; k < sys.coupling_begin[ahead + 1]; ++k) {
-          const auto [ci, side] = sys.body_couplings[size_t(k)];
-          prefetch_bytes(&sys.couplings[size_t(ci)], sizeof(RigidSystem::Coupling));
-        }
-      }
+      if (row + kAssemblyAhead < end)
+        for (int k = row_coupling_begin_[row + kAssemblyAhead];
+             k < row_coupling_begin_[row + kAssemblyAhead + 1]; ++k)
+          prefetch_bytes(&terms_[size_t(row_couplings_[size_t(k)].terms)], sizeof(CouplingTerms));
       OwnSums own;
       crosses.clear();
       const int mask = mask_[row];
       if (mask != 0) {
+        const RowConstants& constants = row_constants_[row];
+        own.point_weight = constants.weight;
+        own.local_arm = constants.arm;
+        own.local_yy = constants.yy;
         const BodyState& own_state = state[b];
-        for (int k = sys.coupling_begin[b]; k < sys.coupling_begin[b + 1]; ++k) {
-          const auto [ci, side] = sys.body_couplings[size_t(k)];
-          const RigidSystem::Coupling& c = sys.couplings[size_t(ci)];
-          const BodyState& other_state = state[size_t(c.body[1 - side])];
-          const Mat3 moment = own_state.rotation * c.cross_of(side) *
-                              other_state.rotation.transpose();  // sum of w y_own y_other^T
-          const Vec3 p_own = own_state.rotation * c.local[side].mean,
-                     p_other = other_state.rotation * c.local[1 - side].mean,
+        for (int k = row_coupling_begin_[row]; k < row_coupling_begin_[row + 1]; ++k) {
+          const RowCoupling& e = row_couplings_[size_t(k)];
+          const CouplingTerms& c = terms_[size_t(e.terms)];
+          const BodyState& other_state = state[size_t(e.other)];
+          const Mat3 moment =
+              e.side == 0 ? Mat3(own_state.rotation * c.cross * other_state.rotation.transpose())
+                          : Mat3(own_state.rotation * c.cross.transpose() *
+                                 other_state.rotation.transpose());
+          const Vec3 p_own = own_state.rotation * c.mean[e.side],
+                     p_other = other_state.rotation * c.mean[1 - e.side],
                      d = own_state.position - other_state.position;
-          own.add_coupling(moment, p_own, p_other, d, c.local[side], c.weight);
-          if (coupling_first_side_[size_t(ci)] != side) continue;
-          const int pair = coupling_pair_[size_t(ci)];
+          own.add_coupling(moment, p_own, p_other, d, c.weight);
+          if (e.pair < 0) continue;
+          const int pair = e.pair;
           // The pair's block (FeatureBlocks::add_cross summed), rows this side's dofs:
           // weight -w, arms -w p, turn K^T - tr(K) I.
           PairBlockSum block;
