@@ -1,6 +1,6 @@
-// block_matrix.h: pair numbering, grouping, a pair's block in its 16 numbers, and the
-// 6x6-block matrix's product, against plain references (a map of pairs in order of first
-// appearance; a pair's block from its points; a dense matrix).
+// block_matrix.h: pair numbering, grouping, a pair's block in its 16 numbers, a body's own
+// block in its form, and the 6x6-block matrix's product, against plain references (a map of
+// pairs in order of first appearance; blocks from their points; a dense matrix).
 
 #include <gtest/gtest.h>
 
@@ -132,6 +132,74 @@ TEST(PairBlock, IsTheDenseBlockOfAPairOfBodiesJoinedAtPoints) {
       if (fixed_column == 2) expected.rightCols<3>().setZero();
       EXPECT_EQ(masked.dense(), expected) << fixed_row << " " << fixed_column;
     }
+}
+
+TEST(RigidDiagonalBlock, IsTheDenseBlockOfABodysPointsAndKeepsItsFormUnderTransfers) {
+  // A body's own Gauss-Newton block of sum w |X - target|^2 / 2 over points at arms y is
+  // sum w J(y)^T J(y) with J(y) = [I, -[y]x]: weight sum w, arm sum w y, turn
+  // sum w (|y|^2 I - y y^T).
+  std::mt19937 rng(6);
+  std::normal_distribution<double> normal;
+  auto random3 = [&] { return Vec3(normal(rng), normal(rng), normal(rng)); };
+  auto jacobian = [](const Vec3& y) {
+    Eigen::Matrix<double, 3, 6> j;
+    j << Mat3::Identity(), -cross(y);
+    return j;
+  };
+  RigidDiagonalBlock block;
+  Mat6 want = Mat6::Zero();
+  for (int q = 0; q < 5; ++q) {
+    const double w = 0.25 + q;
+    const Vec3 y = random3();
+    block.weight += w;
+    block.arm += w * y;
+    block.turn += w * (y.squaredNorm() * Mat3::Identity() - y * y.transpose());
+    want += w * jacobian(y).transpose() * jacobian(y);
+  }
+  EXPECT_LT((block.dense() - want).norm(), 1e-12 * want.norm());
+  // Read back from single precision: the same numbers.
+  RigidDiagonalBlock read;
+  ASSERT_TRUE(RigidDiagonalBlock::read(block.dense().cast<float>(), read));
+  EXPECT_EQ(read.dense(), block.dense().cast<float>().cast<double>());
+  // Moved to a point d away: T^T B T with T = [[I, -[d]x], [0, I]], added to another block.
+  const Vec3 d = random3();
+  Mat6 t = Mat6::Identity();
+  t.block<3, 3>(0, 3) = -cross(d);
+  RigidDiagonalBlock sum = block;
+  sum.add_shifted(block, d);
+  const Mat6 shifted = want + t.transpose() * want * t;
+  EXPECT_LT((sum.dense() - shifted).norm(), 1e-12 * shifted.norm());
+  // A pair inside one cluster adds p + p^T.
+  PairBlockSum pair;
+  pair.weight = -1.5;
+  pair.row_arm = random3();
+  pair.column_arm = random3();
+  for (int k = 0; k < 9; ++k) pair.turn(k / 3, k % 3) = normal(rng);
+  RigidDiagonalBlock with_pair = block;
+  with_pair.add_pair(pair);
+  const Mat6 paired = want + pair.dense() + pair.dense().transpose();
+  EXPECT_LT((with_pair.dense() - paired).norm(), 1e-12 * paired.norm());
+  // The inverse, also of a handle's masked block (fixed shifts: weight 1, arm 0).
+  Mat6 inverse;
+  ASSERT_TRUE(block.inverse(inverse));
+  EXPECT_LT((inverse * want - Mat6::Identity()).norm(), 1e-10);
+  RigidDiagonalBlock pinned = block;
+  pinned.weight = 1.0;
+  pinned.arm.setZero();
+  ASSERT_TRUE(pinned.inverse(inverse));
+  EXPECT_LT((inverse * pinned.dense() - Mat6::Identity()).norm(), 1e-10);
+  // Not positive definite: refused. Not of the form: not read.
+  RigidDiagonalBlock negative = block;
+  negative.weight = -1.0;
+  EXPECT_FALSE(negative.inverse(inverse));
+  RigidDiagonalBlock flat = block;
+  flat.turn = -flat.turn;
+  EXPECT_FALSE(flat.inverse(inverse));
+  for (const auto& [r, c] : {std::pair{0, 1}, std::pair{3, 0}, std::pair{3, 1}, std::pair{1, 4}}) {
+    Mat6f general = block.dense().cast<float>();
+    general(r, c) += 0.5f;
+    EXPECT_FALSE(RigidDiagonalBlock::read(general, read)) << r << " " << c;
+  }
 }
 
 TEST(BlockMatrix, ProductMatchesTheDenseMatrixWithEveryPairStoredInBothRows) {

@@ -166,24 +166,30 @@ TEST(RigidMultigrid, AVCycleIsSymmetricAndPositiveDefiniteOnEveryLevelCount) {
 TEST(RigidMultigrid, OnABlockDiagonalMatrixTheCycleIsTheInverseAndIndefiniteBlocksAreRefused) {
   // Without off-diagonal blocks the forward sweep solves exactly and nothing is left for the
   // coarse levels: one application is the inverse of every diagonal block, which the
-  // smoothers compute (through a 3x3 block and its Schur complement). The blocks mix scales as
-  // the Hessian's do (a body's turns weigh its size squared against its shifts).
+  // smoothers compute (through the Schur complement of the shifts' w I). The blocks have a
+  // rigid Hessian's form [[w I, -[a]x], [[a]x, turn]] (block_matrix.h) and mix scales as the
+  // Hessian's do (a body's turns weigh its size squared against its shifts).
   Posed p = posed_cylinder(12, 16, 0);
   const RigidSystem& sys = p.deformer.system();
   const int n = sys.n_bodies();
   std::mt19937 rng(3);
   std::normal_distribution<double> normal;
+  auto random3 = [&] { return Vec3(normal(rng), normal(rng), normal(rng)); };
   BlockMatrix blocks;
   blocks.set_structure(n, {});
   std::vector<Mat6> exact(static_cast<size_t>(n));
   for (int b = 0; b < n; ++b) {
-    Mat6 g;
-    for (int k = 0; k < 36; ++k) g(k / 6, k % 6) = normal(rng);
-    Vec6 scale;
-    scale << 1, 1, 1, 1e-2, 1e-2, 1e-2;
-    const Mat6 m = scale.asDiagonal() * (g * g.transpose() + 0.5 * Mat6::Identity()) *
-                   scale.asDiagonal();
-    blocks.diag[size_t(b)] = m.cast<BlockScalar>();
+    RigidDiagonalBlock block;
+    block.weight = 0.5 + std::abs(normal(rng));
+    block.arm = 1e-1 * random3();
+    Mat3 g;
+    for (int k = 0; k < 9; ++k) g(k / 3, k % 3) = normal(rng);
+    // turn = S - [a]x[a]x / w for a positive definite Schur complement S
+    const Mat3 schur = 1e-2 * (g * g.transpose() + 0.5 * Mat3::Identity());
+    block.turn =
+        schur - (block.arm * block.arm.transpose() - block.arm.squaredNorm() * Mat3::Identity()) /
+                    block.weight;
+    blocks.diag[size_t(b)] = block.dense().cast<BlockScalar>();
     exact[size_t(b)] = blocks.diag[size_t(b)].cast<double>().inverse();
   }
   std::vector<Vec3> position;
@@ -198,12 +204,19 @@ TEST(RigidMultigrid, OnABlockDiagonalMatrixTheCycleIsTheInverseAndIndefiniteBloc
     const Vec6 want = exact[size_t(b)] * r[size_t(b)];
     ASSERT_LE((z[size_t(b)] - want).norm(), 1e-4 * want.norm()) << "body " << b;
   }
-  // A block that is not positive definite, in its turning part or in its shifting part.
-  for (const int bad : {0, 4}) {
-    BlockMatrix indefinite = blocks;
-    indefinite.diag[size_t(n / 2)](bad, bad) = -1.0f;
-    EXPECT_FALSE(multigrid.set_matrix(indefinite, position)) << bad;
-  }
+  // A block that is not positive definite in its shifting part (w < 0) or in its turning
+  // part, and one that is not of the form: refused.
+  const size_t middle = size_t(n / 2);
+  BlockMatrix indefinite = blocks;
+  indefinite.diag[middle].topLeftCorner<3, 3>() *= -1.0f;
+  EXPECT_FALSE(multigrid.set_matrix(indefinite, position));
+  indefinite = blocks;
+  indefinite.diag[middle](4, 4) = -1.0f;
+  EXPECT_FALSE(multigrid.set_matrix(indefinite, position));
+  BlockMatrix general = blocks;
+  general.diag[middle](0, 1) = general.diag[middle](1, 0) = 1e-3f;
+  EXPECT_FALSE(multigrid.set_matrix(general, position));
+  EXPECT_TRUE(multigrid.set_matrix(blocks, position));
 }
 
 TEST(RigidMultigrid, ConjugateGradientsWithTheCycleConvergeInFewIterations) {

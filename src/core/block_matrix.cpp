@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "primo/parallel.h"
+#include "rigid_blocks.h"
 
 namespace primo {
 
@@ -122,5 +123,91 @@ double dot_rows(const std::vector<V>& a, const std::vector<V>& b) {
 
 double dot(const BlockVector& a, const BlockVector& b) { return dot_rows(a, b); }
 double dot(const BlockVectorF& a, const BlockVectorF& b) { return dot_rows(a, b); }
+
+namespace {
+
+// The inverse of a symmetric positive definite 3x3 matrix by its cofactors; false when it is
+// not positive definite (a leading minor is not positive: Sylvester's criterion).
+bool spd_inverse3(const Mat3& m, Mat3& inverse) {
+  const double c00 = m(1, 1) * m(2, 2) - m(1, 2) * m(1, 2);
+  const double c01 = m(0, 2) * m(1, 2) - m(0, 1) * m(2, 2);
+  const double c02 = m(0, 1) * m(1, 2) - m(0, 2) * m(1, 1);
+  const double minor2 = m(0, 0) * m(1, 1) - m(0, 1) * m(0, 1);
+  const double det = m(0, 0) * c00 + m(0, 1) * c01 + m(0, 2) * c02;
+  if (!(m(0, 0) > 0.0) || !(minor2 > 0.0) || !(det > 0.0)) return false;
+  const double r = 1.0 / det;
+  inverse(0, 0) = r * c00;
+  inverse(0, 1) = inverse(1, 0) = r * c01;
+  inverse(0, 2) = inverse(2, 0) = r * c02;
+  inverse(1, 1) = r * (m(0, 0) * m(2, 2) - m(0, 2) * m(0, 2));
+  inverse(1, 2) = inverse(2, 1) = r * (m(0, 1) * m(0, 2) - m(0, 0) * m(1, 2));
+  inverse(2, 2) = r * minor2;
+  return true;
+}
+
+}  // namespace
+
+bool RigidDiagonalBlock::read(const Mat6f& m, RigidDiagonalBlock& out) {
+  const float w = m(0, 0);
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) {
+      if (m(r, c) != (r == c ? w : 0.0f)) return false;
+      if (m(r, 3 + c) != m(3 + c, r)) return false;  // -[arm]x = [arm]x^T
+    }
+  // [arm]x below the shifts: zero diagonal, antisymmetric.
+  if (m(3, 0) != 0.0f || m(4, 1) != 0.0f || m(5, 2) != 0.0f || m(3, 1) != -m(4, 0) ||
+      m(3, 2) != -m(5, 0) || m(4, 2) != -m(5, 1))
+    return false;
+  out.weight = double(w);
+  out.arm = Vec3(double(m(5, 1)), double(m(3, 2)), double(m(4, 0)));
+  out.turn = m.block<3, 3>(3, 3).cast<double>();
+  return true;
+}
+
+void RigidDiagonalBlock::add_shifted(const RigidDiagonalBlock& b, const Vec3& d) {
+  // T^T b T = [[w I, -[a + w d]x], [[a + w d]x, turn - w [d]x[d]x - [d]x[a]x - [a]x[d]x]]
+  // with [u]x[v]x = v u^T - (u . v) I.
+  weight += b.weight;
+  arm += b.arm + b.weight * d;
+  const Mat3 ad = b.arm * d.transpose();
+  turn += b.turn - b.weight * (d * d.transpose()) - ad - ad.transpose();
+  turn.diagonal().array() += b.weight * d.squaredNorm() + 2.0 * b.arm.dot(d);
+}
+
+void RigidDiagonalBlock::add_pair(const PairBlockSum& p) {
+  // p + p^T = [[2 w I, -[r + c]x], [[r + c]x, turn + turn^T]] for p's arms r (rows), c.
+  weight += 2.0 * p.weight;
+  arm += p.row_arm + p.column_arm;
+  turn += p.turn + p.turn.transpose();
+}
+
+bool RigidDiagonalBlock::inverse(Mat6& out) const {
+  // With A = w I, B = -[a]x: the Schur complement S = turn + [a]x[a]x / w, and the inverse
+  // [[I/w - M [a]x / w, M], [M^T, S^-1]] with M = [a]x S^-1 / w.
+  if (!(weight > 0.0)) return false;
+  const double iw = 1.0 / weight;
+  Mat3 schur = 0.5 * (turn + turn.transpose()) + iw * (arm * arm.transpose());
+  schur.diagonal().array() -= iw * arm.squaredNorm();
+  Mat3 s_inverse;
+  if (!spd_inverse3(schur, s_inverse)) return false;
+  const Mat3 ax = cross_matrix(arm);
+  const Mat3 m = iw * (ax * s_inverse);
+  out.topLeftCorner<3, 3>() = -iw * (m * ax);
+  out.topLeftCorner<3, 3>().diagonal().array() += iw;
+  out.topRightCorner<3, 3>() = m;
+  out.bottomLeftCorner<3, 3>() = m.transpose();
+  out.bottomRightCorner<3, 3>() = s_inverse;
+  return true;
+}
+
+Mat6 RigidDiagonalBlock::dense() const {
+  Mat6 b;
+  const Mat3 ax = cross_matrix(arm);
+  b.topLeftCorner<3, 3>() = weight * Mat3::Identity();
+  b.topRightCorner<3, 3>() = -ax;
+  b.bottomLeftCorner<3, 3>() = ax;
+  b.bottomRightCorner<3, 3>() = turn;
+  return b;
+}
 
 }  // namespace primo

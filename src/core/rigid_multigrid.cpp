@@ -17,69 +17,6 @@ namespace {
 
 using SparseMatrix = Eigen::SparseMatrix<double>;
 
-// T_i^T B T_j for the rigid transfers T = [[I, -[d]x], [0, I]] (a cluster's (v, omega) to a
-// body's, d the body's arm from the cluster's point), in 3x3 blocks.
-Mat6 transfer(const Mat6& b, const Vec3& di, const Vec3& dj) {
-  auto cross_rows = [](const Vec3& d, const Eigen::Ref<const Mat3>& m) {  // [d]x m
-    Mat3 out;
-    for (int c = 0; c < 3; ++c) out.col(c) = d.cross(Vec3(m.col(c)));
-    return out;
-  };
-  auto cross_cols = [](const Eigen::Ref<const Mat3>& m, const Vec3& d) {  // m [d]x
-    Mat3 out;
-    for (int r = 0; r < 3; ++r) out.row(r) = -d.cross(Vec3(m.row(r).transpose())).transpose();
-    return out;
-  };
-  // B T_j = [[B11, B12 - B11 [dj]x], [B21, B22 - B21 [dj]x]]
-  const Mat3 x12 = b.block<3, 3>(0, 3) - cross_cols(b.block<3, 3>(0, 0), dj);
-  const Mat3 x22 = b.block<3, 3>(3, 3) - cross_cols(b.block<3, 3>(3, 0), dj);
-  // T_i^T X = [[X11, X12], [[di]x X11 + X21, [di]x X12 + X22]]
-  Mat6 out;
-  out.block<3, 3>(0, 0) = b.block<3, 3>(0, 0);
-  out.block<3, 3>(0, 3) = x12;
-  out.block<3, 3>(3, 0) = cross_rows(di, b.block<3, 3>(0, 0)) + b.block<3, 3>(3, 0);
-  out.block<3, 3>(3, 3) = cross_rows(di, x12) + x22;
-  return out;
-}
-
-// The inverse of a symmetric positive definite 3x3 matrix by its cofactors; false when it is
-// not positive definite (a leading minor is not positive: Sylvester's criterion).
-bool spd_inverse3(const Mat3& m, Mat3& inverse) {
-  const double c00 = m(1, 1) * m(2, 2) - m(1, 2) * m(1, 2);
-  const double c01 = m(0, 2) * m(1, 2) - m(0, 1) * m(2, 2);
-  const double c02 = m(0, 1) * m(1, 2) - m(0, 2) * m(1, 1);
-  const double minor2 = m(0, 0) * m(1, 1) - m(0, 1) * m(0, 1);
-  const double det = m(0, 0) * c00 + m(0, 1) * c01 + m(0, 2) * c02;
-  if (!(m(0, 0) > 0.0) || !(minor2 > 0.0) || !(det > 0.0)) return false;
-  const double r = 1.0 / det;
-  inverse(0, 0) = r * c00;
-  inverse(0, 1) = inverse(1, 0) = r * c01;
-  inverse(0, 2) = inverse(2, 0) = r * c02;
-  inverse(1, 1) = r * (m(0, 0) * m(2, 2) - m(0, 2) * m(0, 2));
-  inverse(1, 2) = inverse(2, 1) = r * (m(0, 1) * m(0, 2) - m(0, 0) * m(1, 2));
-  inverse(2, 2) = r * minor2;
-  return true;
-}
-
-// The inverse of a symmetric 6x6 block [[A, B], [B^T, C]] through A's inverse and that of its
-// Schur complement S = C - B^T A^-1 B (3x3 each, by cofactors); false when the block is not
-// positive definite (it is exactly when A and S are). Short, independent chains of products:
-// the Cholesky factor and its inverse, one square root and division after another, took 40%
-// of the multigrid's set-up (docs/performance.md).
-bool spd_inverse(const Mat6& a, Mat6& inverse) {
-  Mat3 a_inverse, s_inverse;
-  if (!spd_inverse3(a.topLeftCorner<3, 3>(), a_inverse)) return false;
-  const Mat3 ai_b = a_inverse * a.topRightCorner<3, 3>();
-  const Mat3 schur = a.bottomRightCorner<3, 3>() - a.topRightCorner<3, 3>().transpose() * ai_b;
-  if (!spd_inverse3(0.5 * (schur + schur.transpose()), s_inverse)) return false;
-  const Mat3 ai_b_si = ai_b * s_inverse;
-  inverse.topLeftCorner<3, 3>() = a_inverse + ai_b_si * ai_b.transpose();
-  inverse.topRightCorner<3, 3>() = -ai_b_si;
-  inverse.bottomLeftCorner<3, 3>() = -ai_b_si.transpose();
-  inverse.bottomRightCorner<3, 3>() = s_inverse;
-  return true;
-}
-
 // A sweep's rows depend on each other, so the processor cannot run far enough ahead to load
 // the next rows' blocks while it computes; it is told to, a few rows ahead (at 240k faces a
 // cycle took 44 instead of 53 ms, in alternating runs).
@@ -287,13 +224,16 @@ bool RigidMultigrid::set_matrix(const BlockMatrix& fine, const std::vector<Vec3>
       finer.arm_f[b] = finer.arm[b].cast<float>();
     }
     BlockMatrix& m = coarse.own;
+    std::vector<char> not_rigid(size_t(nc), 0);
     parallel_chunks(size_t(nc), kParallelGrain / 8, [&](size_t begin, size_t end) {
       const int internal_end = coarse.internal.begin[end];  // prefetches stay in the chunk
       for (size_t c = begin; c < end; ++c) {
-        Mat6 sum = Mat6::Zero();
+        RigidDiagonalBlock sum;
         for (int k = coarse.children.begin[c]; k < coarse.children.begin[c + 1]; ++k) {
           const size_t b = size_t(coarse.children.items[size_t(k)]);
-          sum += transfer(a.diag[b].cast<double>(), finer.arm[b], finer.arm[b]);
+          RigidDiagonalBlock child;
+          if (!RigidDiagonalBlock::read(a.diag[b], child)) not_rigid[c] = 1;
+          sum.add_shifted(child, finer.arm[b]);
         }
         for (int k = coarse.internal.begin[c]; k < coarse.internal.begin[c + 1]; ++k) {
           if (k + kGatherAhead < internal_end)
@@ -301,13 +241,13 @@ bool RigidMultigrid::set_matrix(const BlockMatrix& fine, const std::vector<Vec3>
                            sizeof(PairBlock));
           const size_t p = size_t(coarse.internal.items[size_t(k)]);
           const auto [i, j] = a.pairs[p];
-          const Mat6 block =
-              a.off(p).cast<double>().shifted(finer.arm[size_t(i)], finer.arm[size_t(j)]).dense();
-          sum += block + block.transpose();
+          sum.add_pair(a.off(p).cast<double>().shifted(finer.arm[size_t(i)], finer.arm[size_t(j)]));
         }
-        m.diag[c] = sum.cast<BlockScalar>();
+        m.diag[c] = sum.dense().cast<BlockScalar>();
       }
     });
+    // Only a rigid Hessian's blocks project this way (block_matrix.h).
+    if (std::find(not_rigid.begin(), not_rigid.end(), 1) != not_rigid.end()) return false;
     parallel_chunks(m.pairs.size(), kParallelGrain / 8, [&](size_t begin, size_t end) {
       const int sources_end = coarse.sources.begin[end];  // prefetches stay in the chunk
       for (size_t q = begin; q < end; ++q) {
@@ -338,8 +278,9 @@ bool RigidMultigrid::set_matrix(const BlockMatrix& fine, const std::vector<Vec3>
     std::vector<char> failed(a.diag.size(), 0);
     parallel_chunks(a.diag.size(), kParallelGrain / 8, [&](size_t begin, size_t end) {
       for (size_t b = begin; b < end; ++b) {
+        RigidDiagonalBlock block;
         Mat6 inverse = Mat6::Zero();
-        if (!spd_inverse(a.diag[b].cast<double>(), inverse)) failed[b] = 1;
+        if (!RigidDiagonalBlock::read(a.diag[b], block) || !block.inverse(inverse)) failed[b] = 1;
         level.diag_inverse[b] = inverse.cast<BlockScalar>();
       }
     });
