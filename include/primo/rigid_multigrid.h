@@ -73,6 +73,7 @@ class RigidMultigrid {
   void cycle(size_t l, const BlockVectorF& rhs, BlockVectorF& x);
   void krylov_correction(size_t l);  // level l's `x` from its `rhs`
   void sweep(const Level& level, const BlockVectorF& rhs, BlockVectorF& x, bool forward) const;
+  void sweep_from_zero(const Level& level, const BlockVectorF& rhs, BlockVectorF& x) const;
 
   MultigridOptions options_;
   std::vector<std::unique_ptr<Level>> levels_;  // fine first

@@ -58,6 +58,35 @@ struct RigidMultigrid::Level {
     }
   }
   std::vector<Eigen::Vector3f> arm_f;  // `arm` for the cycle's transfers
+  // Each row's block slots, those of rows its forward sweep reaches before it first
+  // (`slots_before` of them), for `slots_of` (the matrix they were taken from). A cycle's
+  // first sweep starts from zero: a row's product then only needs the rows swept before it
+  // (the others are still zero), and the residual after it only the rows swept after it
+  // (what they changed since the row was solved). Each reads half of every row's blocks
+  // instead of all of them twice.
+  std::vector<int> slots, slots_before;
+  // For the level's matrix (every fine matrix has the pairs the multigrid was made for, and
+  // so the same slots).
+  void order_slots() {
+    if (!slots_before.empty() && slots.size() == matrix->row_column.size()) return;
+    const BlockMatrix& a = *matrix;
+    const size_t n = a.diag.size();
+    std::vector<int> rank(n, -1);
+    int next = 0;
+    for (const std::vector<int>& colour : partition.colours)
+      for (const int part : colour)
+        for (const int row : partition.parts[size_t(part)]) rank[size_t(row)] = next++;
+    slots.resize(a.row_column.size());
+    slots_before.assign(n, 0);
+    for (size_t b = 0; b < n; ++b) {
+      int front = a.row_begin[b];
+      for (int k = a.row_begin[b]; k < a.row_begin[b + 1]; ++k)
+        if (rank[size_t(a.row_column[size_t(k)])] < rank[b]) slots[size_t(front++)] = k;
+      slots_before[b] = front - a.row_begin[b];
+      for (int k = a.row_begin[b]; k < a.row_begin[b + 1]; ++k)
+        if (!(rank[size_t(a.row_column[size_t(k)])] < rank[b])) slots[size_t(front++)] = k;
+    }
+  }
   BlockVectorF rhs, x, residual;
   BlockVectorF krylov[5];  // work vectors of the K-cycle's coarse correction
 };
@@ -274,6 +303,7 @@ bool RigidMultigrid::set_matrix(const BlockMatrix& fine, const std::vector<Vec3>
   for (size_t l = 0; l + 1 < levels_.size(); ++l) {
     Level& level = *levels_[l];
     const BlockMatrix& a = *level.matrix;
+    level.order_slots();
     level.diag_inverse.resize(a.diag.size());
     std::vector<char> failed(a.diag.size(), 0);
     parallel_chunks(a.diag.size(), kParallelGrain / 8, [&](size_t begin, size_t end) {
@@ -332,6 +362,29 @@ void RigidMultigrid::sweep(const Level& level, const BlockVectorF& rhs, BlockVec
   }
 }
 
+void RigidMultigrid::sweep_from_zero(const Level& level, const BlockVectorF& rhs,
+                                     BlockVectorF& x) const {
+  const BlockMatrix& a = *level.matrix;
+  const auto& parts = level.partition.parts;
+  for (const std::vector<int>& colour : level.partition.colours) {
+    parallel_tasks(colour.size(), [&](size_t t) {
+      const std::vector<int>& part = parts[size_t(colour[t])];
+      const size_t m = part.size();
+      for (size_t i = 0; i < m; ++i) {
+        const int b = part[i];
+        if (i + kPrefetchRows < m) prefetch_row(a, level.diag_inverse, part[i + kPrefetchRows]);
+        Vec6f off = Vec6f::Zero();
+        const int begin = a.row_begin[size_t(b)], end = begin + level.slots_before[size_t(b)];
+        for (int k = begin; k < end; ++k) {
+          const size_t slot = size_t(level.slots[size_t(k)]);
+          a.row_block[slot].add_product(x[size_t(a.row_column[slot])], off);
+        }
+        x[size_t(b)] = times(level.diag_inverse[size_t(b)], Vec6f(rhs[size_t(b)] - off));
+      }
+    });
+  }
+}
+
 void RigidMultigrid::cycle(size_t l, const BlockVectorF& rhs, BlockVectorF& x) {
   Level& level = *levels_[l];
   const BlockMatrix& a = *level.matrix;
@@ -344,12 +397,29 @@ void RigidMultigrid::cycle(size_t l, const BlockVectorF& rhs, BlockVectorF& x) {
     for (size_t i = 0; i < n; ++i) x[i] = solution.segment<6>(6 * Eigen::Index(i)).cast<float>();
     return;
   }
-  for (int s = 0; s < options_.smoothing_sweeps; ++s) sweep(level, rhs, x, true);
   level.residual.resize(n);
-  parallel_chunks(n, kParallelGrain / 4, [&](size_t begin, size_t end) {
-    for (size_t b = begin; b < end; ++b)
-      level.residual[b] = rhs[b] - times(a.diag[b], x[b]) - a.off_product(int(b), x);
-  });
+  if (options_.smoothing_sweeps == 1) {
+    sweep_from_zero(level, rhs, x);
+    // Each row was solved with the rows before it as they are now and the rows after it at
+    // zero: its residual is what the rows after it add.
+    parallel_chunks(n, kParallelGrain / 4, [&](size_t begin, size_t end) {
+      for (size_t b = begin; b < end; ++b) {
+        Vec6f sum = Vec6f::Zero();
+        const int first = a.row_begin[b] + level.slots_before[b];
+        for (int k = first; k < a.row_begin[b + 1]; ++k) {
+          const size_t slot = size_t(level.slots[size_t(k)]);
+          a.row_block[slot].add_product(x[size_t(a.row_column[slot])], sum);
+        }
+        level.residual[b] = -sum;
+      }
+    });
+  } else {
+    for (int s = 0; s < options_.smoothing_sweeps; ++s) sweep(level, rhs, x, true);
+    parallel_chunks(n, kParallelGrain / 4, [&](size_t begin, size_t end) {
+      for (size_t b = begin; b < end; ++b)
+        level.residual[b] = rhs[b] - times(a.diag[b], x[b]) - a.off_product(int(b), x);
+    });
+  }
   Level& coarse = *levels_[l + 1];
   const size_t nc = coarse.own.diag.size();
   coarse.rhs.resize(nc);
