@@ -81,12 +81,14 @@ struct alignas(16 * sizeof(Scalar)) PairBlockOf {  // one cache line in single p
   }
   // T_row^T B T_column for the rigid transfers T = [[I, -[d]x], [0, I]] that move a body's
   // point by -d (a cluster's motion seen by a body whose point is d from the cluster's).
+  // turn - [row_arm]x [d_column]x - [d_row]x [column_arm']x, by [u]x [v]x = v u^T - (u.v) I.
   PairBlockOf shifted(const V3& d_row, const V3& d_column) const {
     PairBlockOf s;
     s.weight = weight;
     s.row_arm = row_arm + weight * d_row;
     s.column_arm = column_arm + weight * d_column;
-    s.turn = turn - cross(row_arm) * cross(d_column) - cross(d_row) * cross(s.column_arm);
+    s.turn = turn - d_column * row_arm.transpose() - s.column_arm * d_row.transpose();
+    s.turn.diagonal().array() += row_arm.dot(d_column) + d_row.dot(s.column_arm);
     return s;
   }
   // Zeroes the rows or columns of shifts (v) or turns (omega) that are not to move.

@@ -253,7 +253,10 @@ bool RigidMultigrid::set_matrix(const BlockMatrix& fine, const std::vector<Vec3>
       finer.arm_f[b] = finer.arm[b].cast<float>();
     }
     BlockMatrix& m = coarse.own;
-    std::vector<char> not_rigid(size_t(nc), 0);
+    // Each cluster's block from its bodies', and (every body in one cluster) the bodies'
+    // inverse blocks for the finer level's smoother while they are at hand.
+    std::vector<char> failed(size_t(nc), 0);
+    finer.diag_inverse.resize(a.diag.size());
     parallel_chunks(size_t(nc), kParallelGrain / 8, [&](size_t begin, size_t end) {
       const int internal_end = coarse.internal.begin[end];  // prefetches stay in the chunk
       for (size_t c = begin; c < end; ++c) {
@@ -261,7 +264,11 @@ bool RigidMultigrid::set_matrix(const BlockMatrix& fine, const std::vector<Vec3>
         for (int k = coarse.children.begin[c]; k < coarse.children.begin[c + 1]; ++k) {
           const size_t b = size_t(coarse.children.items[size_t(k)]);
           RigidDiagonalBlock child;
-          if (!RigidDiagonalBlock::read(a.diag[b], child)) not_rigid[c] = 1;
+          Mat6 inverse = Mat6::Zero();
+          // Only a rigid Hessian's blocks project this way (block_matrix.h).
+          if (!RigidDiagonalBlock::read(a.diag[b], child) || !child.inverse(inverse))
+            failed[c] = 1;
+          finer.diag_inverse[b] = inverse.cast<BlockScalar>();
           sum.add_shifted(child, finer.arm[b]);
         }
         for (int k = coarse.internal.begin[c]; k < coarse.internal.begin[c + 1]; ++k) {
@@ -275,8 +282,8 @@ bool RigidMultigrid::set_matrix(const BlockMatrix& fine, const std::vector<Vec3>
         m.diag[c] = sum.dense().cast<BlockScalar>();
       }
     });
-    // Only a rigid Hessian's blocks project this way (block_matrix.h).
-    if (std::find(not_rigid.begin(), not_rigid.end(), 1) != not_rigid.end()) return false;
+    if (std::find(failed.begin(), failed.end(), 1) != failed.end()) return false;
+    finer.order_slots();
     parallel_chunks(m.pairs.size(), kParallelGrain / 8, [&](size_t begin, size_t end) {
       const int sources_end = coarse.sources.begin[end];  // prefetches stay in the chunk
       for (size_t q = begin; q < end; ++q) {
@@ -298,24 +305,6 @@ bool RigidMultigrid::set_matrix(const BlockMatrix& fine, const std::vector<Vec3>
       }
     });
   }
-  // Smoothers: the inverse diagonal blocks of every level but the coarsest.
-  bool ok = true;
-  for (size_t l = 0; l + 1 < levels_.size(); ++l) {
-    Level& level = *levels_[l];
-    const BlockMatrix& a = *level.matrix;
-    level.order_slots();
-    level.diag_inverse.resize(a.diag.size());
-    std::vector<char> failed(a.diag.size(), 0);
-    parallel_chunks(a.diag.size(), kParallelGrain / 8, [&](size_t begin, size_t end) {
-      for (size_t b = begin; b < end; ++b) {
-        RigidDiagonalBlock block;
-        Mat6 inverse = Mat6::Zero();
-        if (!RigidDiagonalBlock::read(a.diag[b], block) || !block.inverse(inverse)) failed[b] = 1;
-        level.diag_inverse[b] = inverse.cast<BlockScalar>();
-      }
-    });
-    if (std::find(failed.begin(), failed.end(), 1) != failed.end()) ok = false;
-  }
   // The coarsest level's factor.
   Coarsest& co = *coarsest_;
   const BlockMatrix& last = *levels_.back()->matrix;
@@ -336,7 +325,7 @@ bool RigidMultigrid::set_matrix(const BlockMatrix& fine, const std::vector<Vec3>
     co.analyzed = true;
   }
   co.factor.factorize(co.matrix);
-  return ok && co.factor.info() == Eigen::Success;
+  return co.factor.info() == Eigen::Success;
 }
 
 void RigidMultigrid::sweep(const Level& level, const BlockVectorF& rhs, BlockVectorF& x,
