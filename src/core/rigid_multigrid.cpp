@@ -266,8 +266,7 @@ bool RigidMultigrid::set_matrix(const BlockMatrix& fine, const std::vector<Vec3>
           RigidDiagonalBlock child;
           Mat6 inverse = Mat6::Zero();
           // Only a rigid Hessian's blocks project this way (block_matrix.h).
-          if (!RigidDiagonalBlock::read(a.diag[b], child) || !child.inverse(inverse))
-            failed[c] = 1;
+          if (!RigidDiagonalBlock::read(a.diag[b], child) || !child.inverse(inverse)) failed[c] = 1;
           finer.diag_inverse[b] = inverse.cast<BlockScalar>();
           sum.add_shifted(child, finer.arm[b]);
         }
