@@ -33,6 +33,14 @@ void prefetch_row(const BlockMatrix& a, const std::vector<Mat6f>& diag_inverse, 
 // instead of 62-64).
 constexpr int kGatherAhead = 4;
 
+// Rows a smoothing part has on the coarse levels. A row of a sweep costs about 100 ns where a
+// body's match costs 300 (kBodiesPerPart is for those), and with 2,000 rows a part the 240k
+// mesh's third level (2,792 clusters) was one part, swept on one thread 8 times a cycle. With
+// 500: MultigridCycle/4800 42-50 ms (least, median of 15) against 48-52, the 240k full solve's
+// steps 2557, 2702 ms against 2955, 2864 (the same 10 steps, 34 CG iterations), the koala's
+// 1682, 1617 against 1614, 1497 (noise at its size); and more cores get more parts to share.
+constexpr size_t kCoarseRowsPerPart = 500;
+
 }  // namespace
 
 struct RigidMultigrid::Level {
@@ -164,7 +172,8 @@ RigidMultigrid::RigidMultigrid(const RigidSystem& fine,
       // part's rows are contiguous.
       std::vector<int> all(static_cast<size_t>(n_coarse));
       std::iota(all.begin(), all.end(), 0);
-      coarse.partition = partition_bodies(std::move(all), coarse.position, edges);
+      coarse.partition =
+          partition_bodies(std::move(all), coarse.position, edges, kCoarseRowsPerPart);
       std::vector<int> renumbered(size_t(n_coarse), -1);
       int next = 0;
       for (std::vector<int>& part : coarse.partition.parts)
