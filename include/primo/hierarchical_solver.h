@@ -179,6 +179,7 @@ class HierarchicalSolver {
                                   const std::vector<int>& cluster_of);
   // Takes the level's joints and springs from the next finer level in its current state
   // (`finer_orientation`: that level's own orientations, null for the fine level).
+  void build_levels(const RigidSystem& fine);  // levels_, from the cluster hierarchy
   void restrict_level(Level& level, const RigidSystem& finer,
                       const std::vector<BodyState>& finer_state,
                       const std::vector<Mat3>* finer_orientation);

@@ -121,7 +121,24 @@ void HierarchicalSolver::merge_coupled_pairs(Level& level, Level* finer_level,
 
 HierarchicalSolver::HierarchicalSolver(const RigidSystem& fine, const HierarchicalOptions& options)
     : fine_(fine), options_(options), acceleration_(options.acceleration_history) {
-  const ClusterHierarchy hierarchy = build_cluster_hierarchy(fine, options.hierarchy);
+  // The fine level's sweep plan does not depend on the coarse levels: it is built beside them
+  // (their construction is mostly serial passes over the fine bodies and couplings).
+  parallel_tasks(2, [&](size_t task) {
+    if (task == 0)
+      build_levels(fine);
+    else
+      fine_plan_ = plan_sweep(fine);
+  });
+  if (!levels_.empty()) {
+    coarse_solver_ = std::make_unique<GlobalSolver>(levels_.back()->system,
+                                                    GlobalSolver::Factorization::SupernodalOneThread);
+    // Clusters turn with their prisms during a drag; a reused factor follows them.
+    coarse_solver_->set_body_frames(&levels_.back()->orientation);
+  }
+}
+
+void HierarchicalSolver::build_levels(const RigidSystem& fine) {
+  const ClusterHierarchy hierarchy = build_cluster_hierarchy(fine, options_.hierarchy);
   const int n_faces = int(fine.face_body.size());
 
   // Level couplings come from the fine joints crossing cluster borders, in fine order; the
@@ -230,13 +247,6 @@ HierarchicalSolver::HierarchicalSolver(const RigidSystem& fine, const Hierarchic
     levels_.push_back(std::move(level));
     finer = &levels_.back()->system;
     finer_cluster_of = &cluster_of;
-  }
-  fine_plan_ = plan_sweep(fine);
-  if (!levels_.empty()) {
-    coarse_solver_ = std::make_unique<GlobalSolver>(levels_.back()->system,
-                                                    GlobalSolver::Factorization::SupernodalOneThread);
-    // Clusters turn with their prisms during a drag; a reused factor follows them.
-    coarse_solver_->set_body_frames(&levels_.back()->orientation);
   }
 }
 
