@@ -1,6 +1,7 @@
 #include "primo/newton_krylov.h"
 
 #include <cmath>
+#include <limits>
 #include <utility>
 
 #include "primo/parallel.h"
@@ -64,6 +65,57 @@ struct NewtonKrylov::Impl {
         [](double a, double b) { return std::min(a, b); });
   }
 
+  // q = H p, p . q, and the largest t for which no body's turn |x_w + t p_w| exceeds max_turn
+  // (infinity when none limits it) in one pass: the product streams p and the rows anyway,
+  // where the dot product and the bound each read p and x again.
+  struct Product {
+    double curvature = 0.0;
+    double room = std::numeric_limits<double>::infinity();
+  };
+  Product product_along(const BlockMatrix& h) {
+    const size_t n = p.size();
+    q.resize(n);
+    const double bound = options.max_turn;
+    return parallel_reduce(
+        n, kParallelGrain / 4, Product{},
+        [&](size_t begin, size_t end) {
+          Product part;
+          for (size_t b = begin; b < end; ++b) {
+            q[b] = times(h.diag[b], p[b]) + h.off_product(int(b), p);
+            part.curvature += p[b].dot(q[b]);
+            if (!(bound > 0.0)) continue;
+            const Vec3 xw = x[b].tail<3>(), pw = p[b].tail<3>();
+            const double a = pw.squaredNorm();
+            if (!(a > 0.0)) continue;
+            // the root t >= 0 of |xw + t pw|^2 = bound^2, as turn_limit has it
+            const double half_b = xw.dot(pw);
+            const double c = std::min(0.0, xw.squaredNorm() - bound * bound);
+            part.room = std::min(part.room, (std::sqrt(half_b * half_b - a * c) - half_b) / a);
+          }
+          return part;
+        },
+        [](const Product& u, const Product& v) {
+          return Product{u.curvature + v.curvature, std::min(u.room, v.room)};
+        });
+  }
+
+  // r . z and z . q in one pass, each summed as dot() sums it.
+  std::pair<double, double> dots_of_z() const {
+    return parallel_reduce(
+        z.size(), kParallelGrain, std::pair<double, double>{0.0, 0.0},
+        [&](size_t begin, size_t end) {
+          std::pair<double, double> sums{0.0, 0.0};
+          for (size_t b = begin; b < end; ++b) {
+            sums.first += double(r[b].dot(z[b]));
+            sums.second += double(z[b].dot(q[b]));
+          }
+          return sums;
+        },
+        [](const auto& u, const auto& v) {
+          return std::pair<double, double>{u.first + v.first, u.second + v.second};
+        });
+  }
+
   double largest_turn() const {
     return parallel_reduce(
         x.size(), kParallelGrain, 0.0,
@@ -98,11 +150,11 @@ struct NewtonKrylov::Impl {
     int it = 0;
     while (it < options.max_cg_iterations) {
       if (interrupt && interrupt()) return kInterrupted;
-      h.multiply(p, q);
-      const double curvature = dot(p, q);
+      const Product product = product_along(h);
+      const double curvature = product.curvature;
       if (!(curvature > 0.0)) return it == 0 ? -1 : it;  // keep what was found before it
       double alpha = rz / curvature;
-      if (options.max_turn > 0.0) {
+      if (options.max_turn > 0.0 && product.room < alpha) {
         const double limit = turn_limit(alpha);
         bounded = limit < alpha;
         alpha = limit;
@@ -124,11 +176,11 @@ struct NewtonKrylov::Impl {
       if (decrease <= options.stop_ratio * model_decrease) break;
       multigrid().apply(r, z);
       ++step.preconditioner_applications;
-      const double rz_next = dot(r, z);
+      const auto [rz_next, zq] = dots_of_z();
       if (!(rz_next > 0.0)) break;
       // Flexible (Polak-Ribiere) beta = z' . (r' - r) / (z . r), with r' - r = -alpha q: the
       // K-cycle is not quite a fixed linear map, and Fletcher-Reeves' rz'/rz assumes one.
-      const double beta = -alpha * dot(z, q) / rz;
+      const double beta = -alpha * zq / rz;
       rz = rz_next;
       parallel_chunks(n, kParallelGrain, [&](size_t begin, size_t end) {
         for (size_t b = begin; b < end; ++b) p[b] = z[b] + beta * p[b];
