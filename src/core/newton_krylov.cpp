@@ -44,6 +44,14 @@ struct NewtonKrylov::Impl {
   RigidHessian& hessian() { return *hessian_storage; }
   RigidMultigrid& multigrid() { return *multigrid_storage; }
 
+  // The root t >= 0 of |xw + t pw|^2 = bound^2 for |xw| <= bound and pw != 0 (the constant
+  // term is <= 0): how far along pw the turn xw may go.
+  static double turn_room(const Vec3& xw, const Vec3& pw, double bound) {
+    const double a = pw.squaredNorm(), half_b = xw.dot(pw);
+    const double c = std::min(0.0, xw.squaredNorm() - bound * bound);
+    return (std::sqrt(half_b * half_b - a * c) - half_b) / a;
+  }
+
   // The largest t <= alpha for which no body's turn |x_w + t p_w| exceeds max_turn (every
   // |x_w| is within it already): a minimum, the same whatever the chunks.
   double turn_limit(double alpha) const {
@@ -55,10 +63,7 @@ struct NewtonKrylov::Impl {
           for (size_t b = begin; b < end; ++b) {
             const Vec3 xw = x[b].tail<3>(), pw = p[b].tail<3>();
             if ((xw + alpha * pw).squaredNorm() <= bound * bound) continue;
-            // |xw + t pw|^2 = bound^2: the root t >= 0 (the constant term is <= 0)
-            const double a = pw.squaredNorm(), half_b = xw.dot(pw);
-            const double c = std::min(0.0, xw.squaredNorm() - bound * bound);
-            limit = std::min(limit, (std::sqrt(half_b * half_b - a * c) - half_b) / a);
+            limit = std::min(limit, turn_room(xw, pw, bound));
           }
           return limit;
         },
@@ -85,12 +90,7 @@ struct NewtonKrylov::Impl {
             part.curvature += p[b].dot(q[b]);
             if (!(bound > 0.0)) continue;
             const Vec3 xw = x[b].tail<3>(), pw = p[b].tail<3>();
-            const double a = pw.squaredNorm();
-            if (!(a > 0.0)) continue;
-            // the root t >= 0 of |xw + t pw|^2 = bound^2, as turn_limit has it
-            const double half_b = xw.dot(pw);
-            const double c = std::min(0.0, xw.squaredNorm() - bound * bound);
-            part.room = std::min(part.room, (std::sqrt(half_b * half_b - a * c) - half_b) / a);
+            if (pw.squaredNorm() > 0.0) part.room = std::min(part.room, turn_room(xw, pw, bound));
           }
           return part;
         },
