@@ -37,6 +37,20 @@ Mat3 cross(const Vec3& a) {
   return m;
 }
 
+// How a motion (v, omega) moves a point at arm y from the body's point: v + omega x y.
+Eigen::Matrix<double, 3, 6> point_jacobian(const Vec3& y) {
+  Eigen::Matrix<double, 3, 6> j;
+  j << Mat3::Identity(), -cross(y);
+  return j;
+}
+
+// T = [[I, -[d]x], [0, I]]: a body's motion as seen from a point d away.
+Mat6 rigid_transfer(const Vec3& d) {
+  Mat6 t = Mat6::Identity();
+  t.block<3, 3>(0, 3) = -cross(d);
+  return t;
+}
+
 PairBlock random_pair_block(std::mt19937& rng) {
   std::normal_distribution<float> normal;
   PairBlock b;
@@ -85,11 +99,6 @@ TEST(PairBlock, IsTheDenseBlockOfAPairOfBodiesJoinedAtPoints) {
   std::mt19937 rng(4);
   std::normal_distribution<double> normal;
   auto random3 = [&] { return Vec3(normal(rng), normal(rng), normal(rng)); };
-  auto jacobian = [](const Vec3& y) {
-    Eigen::Matrix<double, 3, 6> j;
-    j << Mat3::Identity(), -cross(y);
-    return j;
-  };
   PairBlockSum block = PairBlockSum::Zero();
   Mat6 want = Mat6::Zero();
   for (int q = 0; q < 4; ++q) {
@@ -101,18 +110,13 @@ TEST(PairBlock, IsTheDenseBlockOfAPairOfBodiesJoinedAtPoints) {
     point.column_arm = -w * y1;
     point.turn = w * y1 * y0.transpose() - w * y0.dot(y1) * Mat3::Identity();
     block += point;
-    want -= w * jacobian(y0).transpose() * jacobian(y1);
+    want -= w * point_jacobian(y0).transpose() * point_jacobian(y1);
   }
   EXPECT_LT((block.dense() - want).norm(), 1e-12 * want.norm());
   EXPECT_LT((block.transposed().dense() - want.transpose()).norm(), 1e-12 * want.norm());
   // Moving the bodies' points: T_0^T B T_1 with T = [[I, -[d]x], [0, I]].
   const Vec3 d0 = random3(), d1 = random3();
-  auto transfer = [](const Vec3& d) {
-    Mat6 t = Mat6::Identity();
-    t.block<3, 3>(0, 3) = -cross(d);
-    return t;
-  };
-  const Mat6 moved = transfer(d0).transpose() * want * transfer(d1);
+  const Mat6 moved = rigid_transfer(d0).transpose() * want * rigid_transfer(d1);
   EXPECT_LT((block.shifted(d0, d1).dense() - moved).norm(), 1e-12 * moved.norm());
   // The product is the dense block's.
   Vec6 x, y = Vec6::Zero();
@@ -141,11 +145,6 @@ TEST(RigidDiagonalBlock, IsTheDenseBlockOfABodysPointsAndKeepsItsFormUnderTransf
   std::mt19937 rng(6);
   std::normal_distribution<double> normal;
   auto random3 = [&] { return Vec3(normal(rng), normal(rng), normal(rng)); };
-  auto jacobian = [](const Vec3& y) {
-    Eigen::Matrix<double, 3, 6> j;
-    j << Mat3::Identity(), -cross(y);
-    return j;
-  };
   RigidDiagonalBlock block;
   Mat6 want = Mat6::Zero();
   for (int q = 0; q < 5; ++q) {
@@ -154,7 +153,7 @@ TEST(RigidDiagonalBlock, IsTheDenseBlockOfABodysPointsAndKeepsItsFormUnderTransf
     block.weight += w;
     block.arm += w * y;
     block.turn += w * (y.squaredNorm() * Mat3::Identity() - y * y.transpose());
-    want += w * jacobian(y).transpose() * jacobian(y);
+    want += w * point_jacobian(y).transpose() * point_jacobian(y);
   }
   EXPECT_LT((block.dense() - want).norm(), 1e-12 * want.norm());
   // Read back from single precision: the same numbers.
@@ -163,8 +162,7 @@ TEST(RigidDiagonalBlock, IsTheDenseBlockOfABodysPointsAndKeepsItsFormUnderTransf
   EXPECT_EQ(read.dense(), block.dense().cast<float>().cast<double>());
   // Moved to a point d away: T^T B T with T = [[I, -[d]x], [0, I]], added to another block.
   const Vec3 d = random3();
-  Mat6 t = Mat6::Identity();
-  t.block<3, 3>(0, 3) = -cross(d);
+  const Mat6 t = rigid_transfer(d);
   RigidDiagonalBlock sum = block;
   sum.add_shifted(block, d);
   const Mat6 shifted = want + t.transpose() * want * t;
