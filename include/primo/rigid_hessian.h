@@ -44,8 +44,9 @@ class RigidHessian {
   // RowConstants, the assembly at 192,000 bodies took 39-49 ms (least and median of 15 runs)
   // against 49-63 ms, for 61 MB more while a solve's steps keep their structure at 240k faces.
   struct CouplingTerms {
-    Mat3 cross;    // RigidSystem::Coupling::cross (side 0's; side 1 reads its transpose)
-    Vec3 mean[2];  // each side's point mode in its body's frame
+    CouplingTerms() {}  // uninitialized: written in parallel, which places their pages
+    Mat3 cross;         // RigidSystem::Coupling::cross (side 0's; side 1 reads its transpose)
+    Vec3 mean[2];       // each side's point mode in its body's frame
     double weight;
   };
   // A row's couplings (CSR by row): their terms, the other body, the side the row is on,

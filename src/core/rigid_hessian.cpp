@@ -97,41 +97,73 @@ RigidHessian::RigidHessian(const RigidSystem& system, std::vector<int> order)
       b = row_of[size_t(b)];
     }
   PairNumbering numbering = number_pairs(edges);
-  // Each row's couplings, their terms numbered as the rows first meet them.
-  std::vector<int> terms_of(system.couplings.size(), -1);
-  terms_.reserve(system.couplings.size());
+  // Each row's couplings, their terms numbered as the rows first meet them: a coupling's first
+  // row is the lower of its two, and a row numbers the couplings it meets first in its own
+  // order. Built in parallel passes that each read a coupling once (at 240k faces the steps'
+  // structure is built beside the first coarse factorization and took longer than it): the
+  // rows' entries (the coupling in place of its terms) and constant sums; the terms, by the
+  // rows that meet them first; the entries' terms.
+  const std::vector<std::pair<int, int>>& sides = system.body_couplings;
   row_coupling_begin_.assign(size_t(n) + 1, 0);
-  row_couplings_.reserve(system.body_couplings.size());
-  row_constants_.resize(size_t(n));
   for (int r = 0; r < n; ++r) {
     const size_t b = size_t(order_[size_t(r)]);
-    RowConstants& constants = row_constants_[size_t(r)];
-    for (int k = system.coupling_begin[b]; k < system.coupling_begin[b + 1]; ++k) {
-      const auto [ci, side] = system.body_couplings[size_t(k)];
-      const RigidSystem::Coupling& c = system.couplings[size_t(ci)];
-      if (terms_of[size_t(ci)] < 0) {
-        terms_of[size_t(ci)] = int(terms_.size());
-        terms_.push_back({c.cross, {c.local[0].mean, c.local[1].mean}, c.weight});
-      }
-      const int pair = numbering.pair_of[size_t(ci)];
-      const bool writes_pair =
-          pair >= 0 && numbering.pairs[size_t(pair)].first == row_of[b];  // its first row
-      row_couplings_.push_back(
-          {terms_of[size_t(ci)], c.body[1 - side], side, writes_pair ? pair : -1});
-      const PatchModes& l = c.local[side];
-      const double w = c.weight;
-      constants.weight += w;
-      constants.arm += w * l.mean;
-      auto add_mode = [&](const Vec3& mode, double weight) {
-        constants.yy.noalias() += (weight * mode) * mode.transpose();
-      };
-      add_mode(l.mean, w);
-      add_mode(l.du, w * kModeWeightDu);
-      add_mode(l.dv, w * kModeWeightDv);
-      add_mode(l.duv, w * kModeWeightDuv);
-    }
-    row_coupling_begin_[size_t(r) + 1] = int(row_couplings_.size());
+    row_coupling_begin_[size_t(r) + 1] =
+        row_coupling_begin_[size_t(r)] + system.coupling_begin[b + 1] - system.coupling_begin[b];
   }
+  std::vector<int> terms_begin(size_t(n) + 1, 0);
+  row_couplings_.resize(sides.size());
+  row_constants_.resize(size_t(n));
+  parallel_chunks(size_t(n), kBodyGrain, [&](size_t begin, size_t end) {
+    for (size_t r = begin; r < end; ++r) {
+      const size_t b = size_t(order_[r]);
+      RowConstants& constants = row_constants_[r];
+      RowCoupling* entry = &row_couplings_[size_t(row_coupling_begin_[r])];
+      for (int k = system.coupling_begin[b]; k < system.coupling_begin[b + 1]; ++k, ++entry) {
+        const auto [ci, side] = sides[size_t(k)];
+        const RigidSystem::Coupling& c = system.couplings[size_t(ci)];
+        const int other = c.body[1 - side];
+        const int pair = numbering.pair_of[size_t(ci)];
+        const bool writes_pair =
+            pair >= 0 && numbering.pairs[size_t(pair)].first == int(r);  // its first row
+        *entry = {ci, other, side, writes_pair ? pair : -1};
+        if (int(r) < row_of[size_t(other)]) ++terms_begin[r + 1];
+        const PatchModes& l = c.local[side];
+        const double w = c.weight;
+        constants.weight += w;
+        constants.arm += w * l.mean;
+        auto add_mode = [&](const Vec3& mode, double weight) {
+          constants.yy.noalias() += (weight * mode) * mode.transpose();
+        };
+        add_mode(l.mean, w);
+        add_mode(l.du, w * kModeWeightDu);
+        add_mode(l.dv, w * kModeWeightDv);
+        add_mode(l.duv, w * kModeWeightDuv);
+      }
+    }
+  });
+  for (int r = 0; r < n; ++r) terms_begin[size_t(r) + 1] += terms_begin[size_t(r)];
+  std::vector<int> terms_of(system.couplings.size(), -1);
+  terms_.resize(size_t(terms_begin[size_t(n)]));
+  parallel_chunks(size_t(n), kBodyGrain, [&](size_t begin, size_t end) {
+    for (size_t r = begin; r < end; ++r) {
+      int next = terms_begin[r];
+      for (int k = row_coupling_begin_[r]; k < row_coupling_begin_[r + 1]; ++k) {
+        const RowCoupling& e = row_couplings_[size_t(k)];
+        if (!(int(r) < row_of[size_t(e.other)])) continue;
+        const RigidSystem::Coupling& c = system.couplings[size_t(e.terms)];
+        terms_of[size_t(e.terms)] = next;
+        CouplingTerms& t = terms_[size_t(next++)];
+        t.cross = c.cross;
+        t.mean[0] = c.local[0].mean;
+        t.mean[1] = c.local[1].mean;
+        t.weight = c.weight;
+      }
+    }
+  });
+  parallel_chunks(row_couplings_.size(), kParallelGrain, [&](size_t begin, size_t end) {
+    for (size_t k = begin; k < end; ++k)
+      row_couplings_[k].terms = terms_of[size_t(row_couplings_[k].terms)];
+  });
   matrix_.set_structure(n, std::move(numbering.pairs));
   gradient_.assign(size_t(n), Vec6::Zero());
 }
