@@ -177,9 +177,9 @@ class HierarchicalSolver {
   static void merge_coupled_pairs(Level& level, Level* finer_level, const RigidSystem& fine,
                                   const std::vector<int>& finer_coupling_fine,
                                   const std::vector<int>& cluster_of);
+  void build_levels(const RigidSystem& fine);  // levels_, from the cluster hierarchy
   // Takes the level's joints and springs from the next finer level in its current state
   // (`finer_orientation`: that level's own orientations, null for the fine level).
-  void build_levels(const RigidSystem& fine);  // levels_, from the cluster hierarchy
   void restrict_level(Level& level, const RigidSystem& finer,
                       const std::vector<BodyState>& finer_state,
                       const std::vector<Mat3>* finer_orientation);
