@@ -213,6 +213,11 @@ struct BlockMatrix {
       row_block[size_t(k)].add_product(x[size_t(row_column[size_t(k)])], sum);
     return sum;
   }
+  // Row `body` of A x.
+  template <class V>
+  V row_product(int body, const std::vector<V>& x) const {
+    return times(diag[size_t(body)], x[size_t(body)]) + off_product(body, x);
+  }
   // y = A x, in parallel by rows (the same bits on any number of threads).
   void multiply(const BlockVector& x, BlockVector& y) const;
   void multiply(const BlockVectorF& x, BlockVectorF& y) const;

@@ -72,8 +72,10 @@ class RigidMultigrid {
   struct Coarsest;
   void cycle(size_t l, const BlockVectorF& rhs, BlockVectorF& x);
   void krylov_correction(size_t l);  // level l's `x` from its `rhs`
-  void sweep(const Level& level, const BlockVectorF& rhs, BlockVectorF& x, bool forward) const;
-  void sweep_from_zero(const Level& level, const BlockVectorF& rhs, BlockVectorF& x) const;
+  // FromZero: a forward sweep of an x that is zero (a cycle's first), reading only the rows
+  // swept before each row.
+  enum class Sweep { FromZero, Forward, Backward };
+  void sweep(const Level& level, const BlockVectorF& rhs, BlockVectorF& x, Sweep direction) const;
 
   MultigridOptions options_;
   std::vector<std::unique_ptr<Level>> levels_;  // fine first

@@ -43,7 +43,7 @@ template <class V>
 void multiply_rows(const BlockMatrix& a, const std::vector<V>& x, std::vector<V>& y) {
   y.resize(a.diag.size());
   parallel_chunks(a.diag.size(), kParallelGrain / 4, [&](size_t begin, size_t end) {
-    for (size_t b = begin; b < end; ++b) y[b] = times(a.diag[b], x[b]) + a.off_product(int(b), x);
+    for (size_t b = begin; b < end; ++b) y[b] = a.row_product(int(b), x);
   });
 }
 }  // namespace

@@ -52,27 +52,10 @@ struct NewtonKrylov::Impl {
     return (std::sqrt(half_b * half_b - a * c) - half_b) / a;
   }
 
-  // The largest t <= alpha for which no body's turn |x_w + t p_w| exceeds max_turn (every
-  // |x_w| is within it already): a minimum, the same whatever the chunks.
-  double turn_limit(double alpha) const {
-    const double bound = options.max_turn;
-    return parallel_reduce(
-        x.size(), kParallelGrain, alpha,
-        [&](size_t begin, size_t end) {
-          double limit = alpha;
-          for (size_t b = begin; b < end; ++b) {
-            const Vec3 xw = x[b].tail<3>(), pw = p[b].tail<3>();
-            if ((xw + alpha * pw).squaredNorm() <= bound * bound) continue;
-            limit = std::min(limit, turn_room(xw, pw, bound));
-          }
-          return limit;
-        },
-        [](double a, double b) { return std::min(a, b); });
-  }
-
   // q = H p, p . q, and the largest t for which no body's turn |x_w + t p_w| exceeds max_turn
-  // (infinity when none limits it) in one pass: the product streams p and the rows anyway,
-  // where the dot product and the bound each read p and x again.
+  // (every |x_w| is within it already; infinity when none limits it) in one pass: the product
+  // streams p and the rows anyway, where the dot product and the bound each read p and x
+  // again. A minimum, the same whatever the chunks.
   struct Product {
     double curvature = 0.0;
     double room = std::numeric_limits<double>::infinity();
@@ -86,7 +69,7 @@ struct NewtonKrylov::Impl {
         [&](size_t begin, size_t end) {
           Product part;
           for (size_t b = begin; b < end; ++b) {
-            q[b] = times(h.diag[b], p[b]) + h.off_product(int(b), p);
+            q[b] = h.row_product(int(b), p);
             part.curvature += p[b].dot(q[b]);
             if (!(bound > 0.0)) continue;
             const Vec3 xw = x[b].tail<3>(), pw = p[b].tail<3>();
@@ -154,10 +137,9 @@ struct NewtonKrylov::Impl {
       const double curvature = product.curvature;
       if (!(curvature > 0.0)) return it == 0 ? -1 : it;  // keep what was found before it
       double alpha = rz / curvature;
-      if (options.max_turn > 0.0 && product.room < alpha) {
-        const double limit = turn_limit(alpha);
-        bounded = limit < alpha;
-        alpha = limit;
+      if (product.room < alpha) {  // the step would turn a body further than max_turn
+        bounded = true;
+        alpha = product.room;
       }
       parallel_chunks(n, kParallelGrain, [&](size_t begin, size_t end) {
         for (size_t b = begin; b < end; ++b) {

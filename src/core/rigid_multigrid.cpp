@@ -67,12 +67,21 @@ struct RigidMultigrid::Level {
   }
   std::vector<Eigen::Vector3f> arm_f;  // `arm` for the cycle's transfers
   // Each row's block slots, those of rows its forward sweep reaches before it first
-  // (`slots_before` of them), for `slots_of` (the matrix they were taken from). A cycle's
-  // first sweep starts from zero: a row's product then only needs the rows swept before it
-  // (the others are still zero), and the residual after it only the rows swept after it
-  // (what they changed since the row was solved). Each reads half of every row's blocks
-  // instead of all of them twice.
+  // (`slots_before` of them). A cycle's first sweep starts from zero: a row's product then
+  // only needs the rows swept before it (the others are still zero), and the residual after
+  // it only the rows swept after it (what they changed since the row was solved). Each reads
+  // half of every row's blocks instead of all of them twice.
   std::vector<int> slots, slots_before;
+  // sum of row b's blocks times x over its slots [first, last) (counted from the row's first).
+  Vec6f slots_product(int b, int first, int last, const BlockVectorF& x) const {
+    const BlockMatrix& a = *matrix;
+    Vec6f sum = Vec6f::Zero();
+    for (int k = a.row_begin[size_t(b)] + first; k < a.row_begin[size_t(b)] + last; ++k) {
+      const size_t slot = size_t(slots[size_t(k)]);
+      a.row_block[slot].add_product(x[size_t(a.row_column[slot])], sum);
+    }
+    return sum;
+  }
   // For the level's matrix (every fine matrix has the pairs the multigrid was made for, and
   // so the same slots).
   void order_slots() {
@@ -337,7 +346,8 @@ bool RigidMultigrid::set_matrix(const BlockMatrix& fine, const std::vector<Vec3>
 }
 
 void RigidMultigrid::sweep(const Level& level, const BlockVectorF& rhs, BlockVectorF& x,
-                           bool forward) const {
+                           Sweep direction) const {
+  const bool forward = direction != Sweep::Backward;
   const BlockMatrix& a = *level.matrix;
   const auto& colours = level.partition.colours;
   const auto& parts = level.partition.parts;
@@ -352,30 +362,10 @@ void RigidMultigrid::sweep(const Level& level, const BlockVectorF& rhs, BlockVec
         if (i + kPrefetchRows < m)
           prefetch_row(a, level.diag_inverse,
                        part[forward ? i + kPrefetchRows : m - 1 - kPrefetchRows - i]);
-        const Vec6f off = forward ? a.off_product(b, x) : a.off_product_descending(b, x);
-        x[size_t(b)] = times(level.diag_inverse[size_t(b)], Vec6f(rhs[size_t(b)] - off));
-      }
-    });
-  }
-}
-
-void RigidMultigrid::sweep_from_zero(const Level& level, const BlockVectorF& rhs,
-                                     BlockVectorF& x) const {
-  const BlockMatrix& a = *level.matrix;
-  const auto& parts = level.partition.parts;
-  for (const std::vector<int>& colour : level.partition.colours) {
-    parallel_tasks(colour.size(), [&](size_t t) {
-      const std::vector<int>& part = parts[size_t(colour[t])];
-      const size_t m = part.size();
-      for (size_t i = 0; i < m; ++i) {
-        const int b = part[i];
-        if (i + kPrefetchRows < m) prefetch_row(a, level.diag_inverse, part[i + kPrefetchRows]);
-        Vec6f off = Vec6f::Zero();
-        const int begin = a.row_begin[size_t(b)], end = begin + level.slots_before[size_t(b)];
-        for (int k = begin; k < end; ++k) {
-          const size_t slot = size_t(level.slots[size_t(k)]);
-          a.row_block[slot].add_product(x[size_t(a.row_column[slot])], off);
-        }
+        const Vec6f off = direction == Sweep::FromZero
+                              ? level.slots_product(b, 0, level.slots_before[size_t(b)], x)
+                          : forward ? a.off_product(b, x)
+                                    : a.off_product_descending(b, x);
         x[size_t(b)] = times(level.diag_inverse[size_t(b)], Vec6f(rhs[size_t(b)] - off));
       }
     });
@@ -396,22 +386,16 @@ void RigidMultigrid::cycle(size_t l, const BlockVectorF& rhs, BlockVectorF& x) {
   }
   level.residual.resize(n);
   if (options_.smoothing_sweeps == 1) {
-    sweep_from_zero(level, rhs, x);
+    sweep(level, rhs, x, Sweep::FromZero);
     // Each row was solved with the rows before it as they are now and the rows after it at
     // zero: its residual is what the rows after it add.
     parallel_chunks(n, kParallelGrain / 4, [&](size_t begin, size_t end) {
-      for (size_t b = begin; b < end; ++b) {
-        Vec6f sum = Vec6f::Zero();
-        const int first = a.row_begin[b] + level.slots_before[b];
-        for (int k = first; k < a.row_begin[b + 1]; ++k) {
-          const size_t slot = size_t(level.slots[size_t(k)]);
-          a.row_block[slot].add_product(x[size_t(a.row_column[slot])], sum);
-        }
-        level.residual[b] = -sum;
-      }
+      for (size_t b = begin; b < end; ++b)
+        level.residual[b] = -level.slots_product(int(b), level.slots_before[b],
+                                                 a.row_begin[b + 1] - a.row_begin[b], x);
     });
   } else {
-    for (int s = 0; s < options_.smoothing_sweeps; ++s) sweep(level, rhs, x, true);
+    for (int s = 0; s < options_.smoothing_sweeps; ++s) sweep(level, rhs, x, Sweep::Forward);
     parallel_chunks(n, kParallelGrain / 4, [&](size_t begin, size_t end) {
       for (size_t b = begin; b < end; ++b)
         level.residual[b] = rhs[b] - times(a.diag[b], x[b]) - a.off_product(int(b), x);
@@ -443,7 +427,7 @@ void RigidMultigrid::cycle(size_t l, const BlockVectorF& rhs, BlockVectorF& x) {
       x[b].tail<3>() += c.tail<3>();
     }
   });
-  for (int s = 0; s < options_.smoothing_sweeps; ++s) sweep(level, rhs, x, false);
+  for (int s = 0; s < options_.smoothing_sweeps; ++s) sweep(level, rhs, x, Sweep::Backward);
 }
 
 // Two steps of flexible conjugate gradients on the coarse level's system, preconditioned by
