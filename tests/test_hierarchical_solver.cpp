@@ -6,6 +6,7 @@
 
 #include <Eigen/Geometry>
 #include <iostream>
+#include <numeric>
 #include <tuple>
 #include <random>
 #include <set>
@@ -113,6 +114,53 @@ TEST(ClusterHierarchy, HandlesStayWholeAndLevelsShrink) {
     for (int c = 0; c < h.cluster_count[l]; ++c) EXPECT_GT(size[c], 0);
   }
   EXPECT_LE(previous, 100);
+}
+
+TEST(ClusterHierarchy, EachLevelAggregatesTheGraphTheFineCouplingsMakeOfItsNodes) {
+  // The hierarchy builds a coarse level's graph from the level before it; by definition it
+  // is the graph of the fine couplings between the nodes (clusters) of that level: each level
+  // rebuilt so, with the nodes' face-weighted centres, must aggregate the same way.
+  const PosedMesh s = bent_cylinder();
+  Deformer d(s.mesh, PrismParameters{}, s.handles);
+  const RigidSystem& fine = d.system();
+  HierarchyOptions options;
+  options.coarsest_max_bodies = 20;
+  const ClusterHierarchy h = build_cluster_hierarchy(fine, options);
+  ASSERT_GE(h.coarse_levels(), 3);
+  const int n_fine = fine.n_bodies();
+  std::vector<int> node_of(static_cast<size_t>(n_fine));
+  std::iota(node_of.begin(), node_of.end(), 0);
+  int n_nodes = n_fine;
+  for (int l = 0; l < h.coarse_levels(); ++l) {
+    std::vector<Vec3> position(static_cast<size_t>(n_nodes), Vec3::Zero());
+    std::vector<double> weight(static_cast<size_t>(n_nodes), 0.0);
+    std::vector<bool> locked(static_cast<size_t>(n_nodes), false);
+    for (int b = 0; b < n_fine; ++b) {
+      const double w = double(fine.bodies[size_t(b)].faces.size());
+      position[size_t(node_of[size_t(b)])] += w * fine.bodies[size_t(b)].rest_center;
+      weight[size_t(node_of[size_t(b)])] += w;
+      if (fine.bodies[size_t(b)].kind != BodyKind::Free) locked[size_t(node_of[size_t(b)])] = true;
+    }
+    for (int v = 0; v < n_nodes; ++v) position[size_t(v)] /= weight[size_t(v)];
+    std::vector<std::set<int>> neighbours(static_cast<size_t>(n_nodes));
+    for (const RigidSystem::Coupling& c : fine.couplings) {
+      const int a = node_of[size_t(c.body[0])], b = node_of[size_t(c.body[1])];
+      if (a == b) continue;
+      neighbours[size_t(a)].insert(b);
+      neighbours[size_t(b)].insert(a);
+    }
+    Groups adjacency;
+    adjacency.begin.push_back(0);
+    for (const std::set<int>& list : neighbours) {
+      adjacency.items.insert(adjacency.items.end(), list.begin(), list.end());
+      adjacency.begin.push_back(int(adjacency.items.size()));
+    }
+    const std::vector<int> aggregate =
+        aggregate_nodes(adjacency, position, locked, options.cluster_size);
+    for (int b = 0; b < n_fine; ++b) node_of[size_t(b)] = aggregate[size_t(node_of[size_t(b)])];
+    ASSERT_EQ(node_of, h.cluster_of[size_t(l)]) << "level " << l + 1;
+    n_nodes = h.cluster_count[size_t(l)];
+  }
 }
 
 TEST(ClusterHierarchy, AggregatesAreConnectedAndCompact) {

@@ -9,6 +9,8 @@
 //    two-thread planned sweep;
 //  - DragPrediction / SystemEnergy: a drag frame's prediction and the energy pass that
 //    checks it (drag_predictor.h);
+//  - NewtonKrylovStructure / ClusterHierarchyBuild: what the first Newton-Krylov step builds
+//    (rows' order, Hessian structure, multigrid levels), and the hierarchy of clusters alone;
 //  - HessianProduct / MultigridCycle: the two kernels of a Newton-Krylov step's conjugate
 //    gradients (newton_krylov.h): a product with the exact Hessian's 6x6 blocks, and one
 //    application of the rigid-cluster multigrid preconditioner (rigid_multigrid.h);
@@ -30,6 +32,7 @@
 #include <random>
 #include <vector>
 
+#include "primo/cluster_hierarchy.h"
 #include "primo/deformer.h"
 #include "primo/drag_predictor.h"
 #include "primo/geometry.h"
@@ -245,6 +248,28 @@ void MultigridSetUp(benchmark::State& run) {
   run.SetItemsProcessed(run.iterations() * h.hessian.matrix().size());
 }
 BENCHMARK(MultigridSetUp)->Arg(60)->Arg(4800)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// What a solve's first Newton-Krylov step builds before it can assemble: the rows' order,
+// the Hessian's structure and the multigrid's levels (at 240k faces it runs beside the first
+// coarse factorization and took longer than it), and the cluster hierarchy alone.
+void NewtonKrylovStructure(benchmark::State& run) {
+  const RigidSystem& system = Limb::of(int(run.range(0))).deformer.system();
+  for (auto _ : run) {
+    RigidHessian hessian(system, multigrid_row_order(system));
+    RigidMultigrid multigrid(system, hessian.matrix().pairs, {}, hessian.order());
+    benchmark::DoNotOptimize(multigrid.levels());
+  }
+  run.SetItemsProcessed(run.iterations() * system.n_bodies());
+}
+BENCHMARK(NewtonKrylovStructure)->Arg(60)->Arg(4800)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void ClusterHierarchyBuild(benchmark::State& run) {
+  const RigidSystem& system = Limb::of(int(run.range(0))).deformer.system();
+  HierarchyOptions options;  // the hierarchical solver's: clusters of 8
+  for (auto _ : run) benchmark::DoNotOptimize(build_cluster_hierarchy(system, options));
+  run.SetItemsProcessed(run.iterations() * system.n_bodies());
+}
+BENCHMARK(ClusterHierarchyBuild)->Arg(60)->Arg(4800)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 void MultigridCycle(benchmark::State& run) {
   LimbHessian& h = LimbHessian::of(int(run.range(0)));

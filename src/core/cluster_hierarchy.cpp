@@ -81,7 +81,28 @@ ClusterHierarchy build_cluster_hierarchy(const RigidSystem& fine, const Hierarch
   for (int b = 0; b < n_fine; ++b) node_of[b] = b;
   int n_nodes = n_fine;
   std::vector<bool> locked(n_fine);
-  for (int b = 0; b < n_fine; ++b) locked[b] = fine.bodies[b].kind != BodyKind::Free;
+  // The fine bodies' weights and centres, read once: each level's positions sum them in body
+  // order (a Body keeps its faces in a vector of its own, one more pointer per read).
+  std::vector<double> body_weight(size_t(n_fine), 0.0);
+  std::vector<Vec3> body_center(static_cast<size_t>(n_fine));
+  for (int b = 0; b < n_fine; ++b) {
+    locked[b] = fine.bodies[b].kind != BodyKind::Free;
+    body_weight[size_t(b)] = double(fine.bodies[b].faces.size());
+    body_center[size_t(b)] = fine.bodies[b].rest_center;
+  }
+  // The graph's edges as pairs of ends (2k, 2k + 1) joining distinct nodes: the fine
+  // couplings on the first level, then each level's edges between the clusters of the one
+  // before it. A coarse level then reads its finer level's adjacency instead of every fine
+  // coupling (at 240k faces five levels of the multigrid's hierarchy read 358,000 couplings
+  // of 280 bytes each); two clusters are joined exactly when two of their nodes are, so the
+  // sorted neighbour lists are the same.
+  std::vector<int> end_node;
+  end_node.reserve(2 * fine.couplings.size());
+  for (const RigidSystem::Coupling& c : fine.couplings)
+    if (c.body[0] != c.body[1]) {
+      end_node.push_back(c.body[0]);
+      end_node.push_back(c.body[1]);
+    }
 
   // At least one coarse level, even when the fine level is small already: without one the
   // solver would be plain local sweeps.
@@ -90,22 +111,14 @@ ClusterHierarchy build_cluster_hierarchy(const RigidSystem& fine, const Hierarch
     std::vector<Vec3> position(n_nodes, Vec3::Zero());
     std::vector<double> weight(n_nodes, 0.0);
     for (int b = 0; b < n_fine; ++b) {
-      const double w = double(fine.bodies[b].faces.size());
-      position[node_of[b]] += w * fine.bodies[b].rest_center;
+      const double w = body_weight[size_t(b)];
+      position[node_of[b]] += w * body_center[size_t(b)];
       weight[node_of[b]] += w;
     }
     for (int v = 0; v < n_nodes; ++v) position[v] /= weight[v];
     // The nodes' neighbours, each list sorted and without repeats (as compressed rows: one
     // small vector per node cost more than the aggregation at 180,000 bodies).
-    std::vector<int> end_node(2 * fine.couplings.size(), -1);  // both ends of each coupling
-    for (size_t k = 0; k < fine.couplings.size(); ++k) {
-      const int a = node_of[size_t(fine.couplings[k].body[0])],
-                b = node_of[size_t(fine.couplings[k].body[1])];
-      if (a == b) continue;
-      end_node[2 * k] = a;
-      end_node[2 * k + 1] = b;
-    }
-    Groups adjacency = group_by(end_node, n_nodes);  // node -> its coupling ends
+    Groups adjacency = group_by(end_node, n_nodes);  // node -> its edge ends
     for (int& end : adjacency.items) end = end_node[size_t(end ^ 1)];  // -> the other end's node
     int kept = 0;  // each list sorted and its repeats dropped, compacted in place
     for (int v = 0; v < n_nodes; ++v) {
@@ -127,6 +140,14 @@ ClusterHierarchy build_cluster_hierarchy(const RigidSystem& fine, const Hierarch
         aggregate_nodes(adjacency, position, node_locked, options.cluster_size);
     const int n_clusters = aggregate.empty() ? 0 : *std::max_element(aggregate.begin(), aggregate.end()) + 1;
     if (n_clusters * 3 > n_nodes * 2) break;  // cannot coarsen much further (handles, islands)
+    end_node.clear();  // each edge once (lower node first), as a pair of clusters
+    for (int v = 0; v < n_nodes; ++v)
+      for (int k = adjacency.begin[size_t(v)]; k < adjacency.begin[size_t(v) + 1]; ++k) {
+        const int u = adjacency.items[size_t(k)];
+        if (u <= v || aggregate[size_t(u)] == aggregate[size_t(v)]) continue;
+        end_node.push_back(aggregate[size_t(v)]);
+        end_node.push_back(aggregate[size_t(u)]);
+      }
     for (int b = 0; b < n_fine; ++b) node_of[b] = aggregate[node_of[b]];
     h.cluster_of.push_back(node_of);
     h.cluster_count.push_back(n_clusters);
