@@ -9,6 +9,7 @@
 //    two-thread planned sweep;
 //  - DragPrediction / SystemEnergy: a drag frame's prediction and the energy pass that
 //    checks it (drag_predictor.h);
+//  - NewtonKrylovMove: a step's trial state for its line search;
 //  - NewtonKrylovStructure / ClusterHierarchyBuild: what the first Newton-Krylov step builds
 //    (rows' order, Hessian structure, multigrid levels), and the hierarchy of clusters alone;
 //  - HessianProduct / MultigridCycle: the two kernels of a Newton-Krylov step's conjugate
@@ -248,6 +249,22 @@ void MultigridSetUp(benchmark::State& run) {
   run.SetItemsProcessed(run.iterations() * h.hessian.matrix().size());
 }
 BENCHMARK(MultigridSetUp)->Arg(60)->Arg(4800)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// A Newton-Krylov step's trial state for its line search: every body moved by its part of
+// the step (its turn through the exponential map).
+void NewtonKrylovMove(benchmark::State& run) {
+  const Limb& limb = Limb::of(int(run.range(0)));
+  LimbHessian& h = LimbHessian::of(int(run.range(0)));
+  BlockVector step;
+  for (const Vec6& r : h.residual) step.push_back(1e-3 * r);
+  std::vector<BodyState> trial;
+  for (auto _ : run) {
+    h.hessian.move_into(limb.state, step, 1.0, trial);
+    benchmark::ClobberMemory();
+  }
+  run.SetItemsProcessed(run.iterations() * int64_t(limb.state.size()));
+}
+BENCHMARK(NewtonKrylovMove)->Arg(4800)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 // What a solve's first Newton-Krylov step builds before it can assemble: the rows' order,
 // the Hessian's structure and the multigrid's levels (at 240k faces it runs beside the first

@@ -84,8 +84,9 @@ RigidHessian::RigidHessian(const RigidSystem& system, std::vector<int> order)
     order_.resize(size_t(n));
     std::iota(order_.begin(), order_.end(), 0);
   }
-  std::vector<int> row_of(size_t(n), -1);
-  for (int r = 0; r < n; ++r) row_of[size_t(order_[size_t(r)])] = r;
+  row_of_.assign(size_t(n), -1);
+  for (int r = 0; r < n; ++r) row_of_[size_t(order_[size_t(r)])] = r;
+  const std::vector<int>& row_of = row_of_;
   mask_.resize(size_t(n));
   for (int r = 0; r < n; ++r)
     mask_[size_t(r)] = active_mask(system.bodies[size_t(order_[size_t(r)])].kind);
@@ -251,10 +252,12 @@ void RigidHessian::assemble(const std::vector<BodyState>& state, bool second_ord
 
 void RigidHessian::move_into(const std::vector<BodyState>& state, const BlockVector& step,
                              double lambda, std::vector<BodyState>& out) const {
+  // In body order: the states are read and written in sequence, and only each row's step
+  // (half a state's size) is gathered (row order took 8-9 ms of a 240k step's line search).
   out.resize(state.size());
   parallel_chunks(state.size(), kParallelGrain, [&](size_t begin, size_t end) {
-    for (size_t row = begin; row < end; ++row) {
-      const size_t b = size_t(order_[row]);
+    for (size_t b = begin; b < end; ++b) {
+      const size_t row = size_t(row_of_[b]);
       const Vec6 d = lambda * step[row];
       out[b] = state[b];
       if (mask_[row] & 0x38)
