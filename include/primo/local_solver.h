@@ -48,6 +48,9 @@ struct SweepPlan {
   std::vector<int> joint_slot;       // system.body_couplings[k] -> its entry in `joints`
   std::vector<double> joint_weight;  // per body: sum of its joints' weights
   std::vector<Vec3> joint_source;    // per body: sum of own_mean
+  // Per body: its kind, read here rather than from its Body (232 bytes: a cache line a body
+  // for one byte; PlannedSweep/4800 took 36.6 ms instead of 33.8, medians alternating).
+  std::vector<BodyKind> kind;
 };
 SweepPlan plan_sweep(const RigidSystem& system, bool parallel = true);
 // Re-reads the couplings' values after they changed (same couplings, same bodies); springs

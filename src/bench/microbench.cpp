@@ -156,7 +156,7 @@ void PlannedSweep(benchmark::State& run) {
   run.SetItemsProcessed(run.iterations() * limb.moving_bodies);
   run.counters["faces"] = double(limb.mesh.n_faces());
 }
-BENCHMARK(PlannedSweep)->Arg(60)->Arg(240)->Unit(benchmark::kMicrosecond)->UseRealTime();
+BENCHMARK(PlannedSweep)->Arg(60)->Arg(240)->Arg(4800)->Unit(benchmark::kMicrosecond)->UseRealTime();
 
 // A drag frame's extra work with the predictor (drag_predictor.h): every body carried on by
 // its last change (argument 2: a steady drag, fraction 1; otherwise 0.7), and the energy

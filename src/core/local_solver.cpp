@@ -105,7 +105,7 @@ BodyState relaxed(const BodyState& current, const BodyState& matched, double rel
 // still lowers the body's energy.
 BodyState planned_match(const RigidSystem& system, const SweepPlan& plan,
                         const std::vector<BodyState>& state, int body, double relaxation) {
-  const BodyKind kind = system.bodies[body].kind;
+  const BodyKind kind = plan.kind[size_t(body)];
   const BodyState& current = state[body];
   if (kind == BodyKind::Fixed) return current;
   double point_weight = plan.joint_weight[body];
@@ -235,6 +235,7 @@ void refresh_sweep_plan(SweepPlan& plan, const RigidSystem& system) {
     build_joint_slots(plan, system);
   plan.joint_weight.resize(n);
   plan.joint_source.resize(n);
+  plan.kind.resize(size_t(n));
   parallel_chunks(size_t(n), kParallelGrain, [&](size_t begin, size_t end) {
     const int last_coupling = system.coupling_begin[end];
     for (int b = int(begin); b < int(end); ++b) {
@@ -264,6 +265,7 @@ void refresh_sweep_plan(SweepPlan& plan, const RigidSystem& system) {
       }
       plan.joint_weight[b] = weight;
       plan.joint_source[b] = source;
+      plan.kind[size_t(b)] = system.bodies[size_t(b)].kind;
     }
   });
 }
