@@ -33,11 +33,16 @@ double DragPredictor::fraction(const std::vector<double>& target_move, double mu
 }
 
 void DragPredictor::predict(const RigidSystem& system, const std::vector<BodyState>& state,
-                            double fraction, std::vector<BodyState>& predicted) const {
+                            double fraction, std::vector<BodyState>& predicted) {
   predicted.resize(state.size());
   if (previous_state_.size() != state.size()) {
     predicted = state;
     return;
+  }
+  if (kinds_of_ != &system || int(kinds_.size()) != system.n_bodies()) {
+    kinds_.resize(size_t(system.n_bodies()));
+    for (int b = 0; b < system.n_bodies(); ++b) kinds_[size_t(b)] = system.bodies[size_t(b)].kind;
+    kinds_of_ = &system;
   }
   parallel_chunks(state.size(), kParallelGrain, [&](size_t begin, size_t end) {
     for (size_t b = begin; b < end; ++b) {
@@ -45,7 +50,7 @@ void DragPredictor::predict(const RigidSystem& system, const std::vector<BodySta
       const BodyState& before = previous_state_[b];
       BodyState& p = predicted[b];
       p = now;
-      const BodyKind kind = system.bodies[b].kind;
+      const BodyKind kind = kinds_[b];
       if (kind == BodyKind::Fixed) continue;
       if (kind != BodyKind::PinnedPosition)
         p.position = now.position + fraction * (now.position - before.position);
