@@ -73,6 +73,9 @@ struct HierarchicalSolver::Level {
   std::vector<Vec3> rest_metric_mean;
   std::vector<Mat3> rest_metric_centered, rest_metric_pinned;
   std::vector<BodyState> correction;
+  // Each cluster's rest_center as the last restriction set it, read here rather than from its
+  // 232-byte Body by the restriction's couplings and the prolongation (a cache line each).
+  std::vector<Vec3> center;
   SweepPlan plan;
 };
 
@@ -286,6 +289,7 @@ void HierarchicalSolver::restrict_level(Level& level, const RigidSystem& finer,
   const int n = sys.n_bodies();
   const bool swept = &level != levels_.back().get();  // the coarsest level is solved globally
   level.correction.resize(n);
+  level.center.resize(size_t(n));
   auto child_orientation = [&](int child) {
     return finer_orientation ? Mat3(finer_state[child].rotation * (*finer_orientation)[child])
                              : finer_state[child].rotation;
@@ -307,6 +311,7 @@ void HierarchicalSolver::restrict_level(Level& level, const RigidSystem& finer,
       }
       RigidSystem::Body& body = sys.bodies[c];
       body.rest_center = center / weight;
+      level.center[c] = body.rest_center;
       // The cluster's prisms have moved; orient its rest metric by them.
       level.orientation[c] = child_orientation(level.representative_child[c]);
       if (!swept) {  // only the coarse Newton step measures motions in the metric
@@ -339,7 +344,7 @@ void HierarchicalSolver::restrict_level(Level& level, const RigidSystem& finer,
         for (int s = 0; s < 2; ++s) {
           const BodyState& st = finer_state[size_t(fc.body[s])];
           const PatchModes& m = fc.local[s];
-          c.local[s] = {st.rotation * m.mean + st.position - sys.bodies[size_t(c.body[s])].rest_center,
+          c.local[s] = {st.rotation * m.mean + st.position - level.center[size_t(c.body[s])],
                         st.rotation * m.du, st.rotation * m.dv, st.rotation * m.duv};
         }
         c.update_cross();  // local matching reads the cross moments
@@ -359,8 +364,8 @@ void HierarchicalSolver::restrict_level(Level& level, const RigidSystem& finer,
           const size_t last = size_t(level.merged_begin[end]);
           for (size_t k = begin; k < end; ++k) {
             RigidSystem::Coupling& c = sys.couplings[k];
-            const Vec3& center0 = sys.bodies[size_t(c.body[0])].rest_center;
-            const Vec3& center1 = sys.bodies[size_t(c.body[1])].rest_center;
+            const Vec3& center0 = level.center[size_t(c.body[0])];
+            const Vec3& center1 = level.center[size_t(c.body[1])];
             CouplingMoments moments;
             moments.trace = level.merged_trace[k];
             for (int i = level.merged_begin[k]; i < level.merged_begin[k + 1]; ++i) {
@@ -384,7 +389,7 @@ void HierarchicalSolver::restrict_level(Level& level, const RigidSystem& finer,
   for (size_t k = 0; k < finer.springs.size(); ++k) {
     const RigidSystem::Spring& fs = finer.springs[k];
     const int c = level.parent_of[fs.body];
-    sys.springs[k] = {c, world_point(finer_state[fs.body], fs.local) - sys.bodies[c].rest_center,
+    sys.springs[k] = {c, world_point(finer_state[fs.body], fs.local) - level.center[size_t(c)],
                       fs.target, fs.weight};
   }
   index_springs(sys);
@@ -392,13 +397,12 @@ void HierarchicalSolver::restrict_level(Level& level, const RigidSystem& finer,
 }
 
 void HierarchicalSolver::prolong_level(const Level& level, std::vector<BodyState>& finer_state) const {
-  const RigidSystem& sys = level.system;
   parallel_chunks(finer_state.size(), kParallelGrain, [&](size_t begin, size_t end) {
     for (size_t b = begin; b < end; ++b) {
       const int c = level.parent_of[b];
       const BodyState& corr = level.correction[c];
       BodyState& s = finer_state[b];
-      s.position = corr.rotation * (s.position - sys.bodies[c].rest_center) + corr.position;
+      s.position = corr.rotation * (s.position - level.center[size_t(c)]) + corr.position;
       s.rotation = corr.rotation * s.rotation;
     }
   });
