@@ -87,6 +87,24 @@ TEST(DragPredictor, CarriesATurnAndAShiftOnAndKeepsWhatHandlesPrescribe) {
   }
 }
 
+TEST(DragPredictor, AfterForgettingReadsTheKindsOfTheSystemNowInPlace) {
+  // The predictor copies the bodies' kinds from the system it predicts for; a deformer moved
+  // into another's place has a new system at the old address, and forgets its drag then.
+  RigidSystem system;
+  system.bodies.resize(4);
+  DragPredictor p;
+  std::vector<BodyState> predicted;
+  p.remember({1.0}, frame(4));
+  p.predict(system, frame(5), 1.0, predicted);
+  EXPECT_NE(predicted[1].position, frame(5)[1].position);  // a free body moves on
+  system.bodies[1].kind = BodyKind::Fixed;  // another system, same place
+  p.forget();
+  p.remember({1.0}, frame(4));
+  p.predict(system, frame(5), 1.0, predicted);
+  EXPECT_EQ(predicted[1].position, frame(5)[1].position);
+  EXPECT_EQ(predicted[1].rotation, frame(5)[1].rotation);
+}
+
 namespace {
 
 struct DragResult {

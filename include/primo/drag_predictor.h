@@ -23,9 +23,12 @@ namespace primo {
 class DragPredictor {
  public:
   // The state was set from outside (reset, a pose loaded): the next solve has no last frame.
+  // (A deformer moved into another's place keeps its system's address: forgetting, as it
+  // does then, also drops the kinds copied from the system that was there.)
   void forget() {
     has_previous_ = false;
     previous_move_.clear();
+    kinds_of_ = nullptr;
   }
 
   // At the start of a solve: the fraction of the last frame's change to add to the state
