@@ -197,6 +197,8 @@ void build_joint_slots(SweepPlan& plan, const RigidSystem& system) {
     }
     return distinct;
   };
+  plan.kind.resize(size_t(n));  // kinds never change in a system: with the structure
+  for (int b = 0; b < n; ++b) plan.kind[size_t(b)] = system.bodies[size_t(b)].kind;
   plan.joint_begin.assign(n + 1, 0);
   parallel_chunks(size_t(n), kParallelGrain, [&](size_t begin, size_t end) {
     std::vector<int> other, slot;
@@ -235,7 +237,6 @@ void refresh_sweep_plan(SweepPlan& plan, const RigidSystem& system) {
     build_joint_slots(plan, system);
   plan.joint_weight.resize(n);
   plan.joint_source.resize(n);
-  plan.kind.resize(size_t(n));
   parallel_chunks(size_t(n), kParallelGrain, [&](size_t begin, size_t end) {
     const int last_coupling = system.coupling_begin[end];
     for (int b = int(begin); b < int(end); ++b) {
@@ -265,7 +266,6 @@ void refresh_sweep_plan(SweepPlan& plan, const RigidSystem& system) {
       }
       plan.joint_weight[b] = weight;
       plan.joint_source[b] = source;
-      plan.kind[size_t(b)] = system.bodies[size_t(b)].kind;
     }
   });
 }
