@@ -105,6 +105,8 @@ Deformer::Deformer(const Mesh& mesh, const PrismParameters& params, std::vector<
                     " is out of range");
 
   system_ = build_rigid_system(layer_, face_body, kinds, {});
+  body_center_.reserve(system_.bodies.size());
+  for (const RigidSystem::Body& body : system_.bodies) body_center_.push_back(body.rest_center);
   rebuild_springs();
   reset();
 }
@@ -125,6 +127,7 @@ Deformer::Deformer(Deformer&& other) noexcept
       handles_(std::move(other.handles_)),
       forces_(std::move(other.forces_)),
       system_(std::move(other.system_)),
+      body_center_(std::move(other.body_center_)),
       state_(std::move(other.state_)),
       settled_(other.settled_),
       settled_method_(other.settled_method_),
@@ -143,6 +146,7 @@ Deformer& Deformer::operator=(Deformer&& other) noexcept {
   handles_ = std::move(other.handles_);
   forces_ = std::move(other.forces_);
   system_ = std::move(other.system_);
+  body_center_ = std::move(other.body_center_);
   state_ = std::move(other.state_);
   settled_ = other.settled_;
   settled_method_ = other.settled_method_;
@@ -524,7 +528,7 @@ std::vector<Vec3> Deformer::vertex_positions() const {
     for (int f = int(begin); f < int(end); ++f) {
       const int b = system_.face_body[f];
       const BodyState& s = state_[b];
-      const Vec3& center = system_.bodies[b].rest_center;
+      const Vec3& center = body_center_[size_t(b)];
       for (int k = layer_.corner_begin[f]; k < layer_.corner_begin[f + 1]; ++k)
         corner[k] = s.rotation * (layer_.corner_point[k] - center) + s.position;
     }
