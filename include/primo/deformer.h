@@ -208,9 +208,9 @@ class Deformer {
   std::vector<Handle> handles_;
   std::vector<Force> forces_;
   RigidSystem system_;
-  // Each body's rest_center, read by the vertex update for every face: from the 232-byte
-  // Bodies it cost a cache line a face (at 240k faces the update took 6.6-6.9 ms a frame
-  // against 4.5-5.5).
+  // Each body's rest_center, read by the vertex update and face_motions for every face: from
+  // the 232-byte Bodies it cost a cache line a face (at 240k faces the vertex update took
+  // 6.6-6.9 ms a frame against 4.5-5.5).
   std::vector<Vec3> body_center_;
   std::vector<BodyState> state_;
   std::vector<BodyState> last_good_state_;  // before the current iteration (guarded_iterate)

@@ -562,7 +562,7 @@ std::vector<RigidTransform> Deformer::face_motions() const {
     const int b = system_.face_body[f];
     const BodyState& s = state_[b];
     motions[f].rotation = s.rotation;
-    motions[f].translation = s.position - s.rotation * system_.bodies[b].rest_center;
+    motions[f].translation = s.position - s.rotation * body_center_[size_t(b)];
   }
   return motions;
 }
