@@ -97,7 +97,8 @@ TEST(DragPredictor, AfterForgettingReadsTheKindsOfTheSystemNowInPlace) {
   p.remember({1.0}, frame(4));
   p.predict(system, frame(5), 1.0, predicted);
   EXPECT_NE(predicted[1].position, frame(5)[1].position);  // a free body moves on
-  system.bodies[1].kind = BodyKind::Fixed;  // another system, same place
+  // Another system, in the same place.
+  system.bodies[1].kind = BodyKind::Fixed;
   p.forget();
   p.remember({1.0}, frame(4));
   p.predict(system, frame(5), 1.0, predicted);

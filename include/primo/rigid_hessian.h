@@ -67,9 +67,9 @@ class RigidHessian {
   };
 
   const RigidSystem& system_;
-  std::vector<int> order_;  // row -> body
+  std::vector<int> order_;   // row -> body
   std::vector<int> row_of_;  // body -> row
-  std::vector<int> mask_;   // active_mask of each row's body
+  std::vector<int> mask_;    // active_mask of each row's body
   std::vector<CouplingTerms> terms_;
   std::vector<int> row_coupling_begin_;
   std::vector<RowCoupling> row_couplings_;
