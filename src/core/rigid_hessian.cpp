@@ -86,7 +86,6 @@ RigidHessian::RigidHessian(const RigidSystem& system, std::vector<int> order)
   }
   row_of_.assign(size_t(n), -1);
   for (int r = 0; r < n; ++r) row_of_[size_t(order_[size_t(r)])] = r;
-  const std::vector<int>& row_of = row_of_;
   mask_.resize(size_t(n));
   for (int r = 0; r < n; ++r)
     mask_[size_t(r)] = active_mask(system.bodies[size_t(order_[size_t(r)])].kind);
@@ -94,8 +93,8 @@ RigidHessian::RigidHessian(const RigidSystem& system, std::vector<int> order)
   std::vector<std::pair<int, int>> edges = moving_coupling_edges(system);
   for (auto& [a, b] : edges)
     if (a >= 0) {
-      a = row_of[size_t(a)];
-      b = row_of[size_t(b)];
+      a = row_of_[size_t(a)];
+      b = row_of_[size_t(b)];
     }
   PairNumbering numbering = number_pairs(edges);
   // Each row's couplings, their terms numbered as the rows first meet them: a coupling's first
@@ -127,7 +126,7 @@ RigidHessian::RigidHessian(const RigidSystem& system, std::vector<int> order)
         const bool writes_pair =
             pair >= 0 && numbering.pairs[size_t(pair)].first == int(r);  // its first row
         *entry = {ci, other, side, writes_pair ? pair : -1};
-        if (int(r) < row_of[size_t(other)]) ++terms_begin[r + 1];
+        if (int(r) < row_of_[size_t(other)]) ++terms_begin[r + 1];
         const PatchModes& l = c.local[side];
         const double w = c.weight;
         constants.weight += w;
@@ -150,7 +149,7 @@ RigidHessian::RigidHessian(const RigidSystem& system, std::vector<int> order)
       int next = terms_begin[r];
       for (int k = row_coupling_begin_[r]; k < row_coupling_begin_[r + 1]; ++k) {
         const RowCoupling& e = row_couplings_[size_t(k)];
-        if (!(int(r) < row_of[size_t(e.other)])) continue;
+        if (!(int(r) < row_of_[size_t(e.other)])) continue;
         const RigidSystem::Coupling& c = system.couplings[size_t(e.terms)];
         terms_of[size_t(e.terms)] = next;
         CouplingTerms& t = terms_[size_t(next++)];

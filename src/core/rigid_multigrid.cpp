@@ -397,8 +397,7 @@ void RigidMultigrid::cycle(size_t l, const BlockVectorF& rhs, BlockVectorF& x) {
   } else {
     for (int s = 0; s < options_.smoothing_sweeps; ++s) sweep(level, rhs, x, Sweep::Forward);
     parallel_chunks(n, kParallelGrain / 4, [&](size_t begin, size_t end) {
-      for (size_t b = begin; b < end; ++b)
-        level.residual[b] = rhs[b] - times(a.diag[b], x[b]) - a.off_product(int(b), x);
+      for (size_t b = begin; b < end; ++b) level.residual[b] = rhs[b] - a.row_product(int(b), x);
     });
   }
   Level& coarse = *levels_[l + 1];
