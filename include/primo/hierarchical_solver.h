@@ -86,16 +86,18 @@ struct HierarchicalOptions {
   // armadillo, 0.072-0.077 instead of 0.047-0.052 s on the elephant, and 30 instead of 56 s
   // on the koala subdivided to 400k faces (whose cycles stop 0.18% above the minimum).
   double newton_krylov_below = 1e-3;
-  // When the targets have stayed put for a few cycles and the last of them still lowered the
-  // energy by more than this fraction, the state is far from the minimum (a jump or a solve
-  // from rest, not a drag that followed the hand): the rest of that solve is Newton-Krylov
-  // steps. There the cycles spend most of their iterations (the 240k drag benchmark's solve
-  // from rest: 80 cycles), where steps of a Newton method take 9 to 15; full solves took
-  // 0.19 instead of 0.28 s (elephant), 0.73 instead of 0.89 s (armadillo), 3.8 instead of
-  // 5.7 s (koala) and about 5.5 instead of 9.5 s (240k faces) (docs/performance.md). After a
-  // drag the first settling cycles lower the energy by 1e-5 to 5e-3 of it, after a jump by
-  // 2e-2 to 0.6. 0: cycles there too. A step takes 0.4-0.9 s at 240k faces: the editor
-  // interrupts it when a newer request comes (SolveOptions::interrupt).
+  // When the first cycle at fixed targets (the second since they moved: the first is a drag's
+  // frame) lowered the energy by more than this fraction, the state is far from the minimum (a
+  // jump or a solve from rest, not a drag that followed the hand): the rest of that solve is
+  // Newton-Krylov steps, from the next iteration on (deciding a cycle later cost the 240k
+  // solve from rest a cycle for the same steps). There the cycles spend most of their
+  // iterations (the 240k drag benchmark's solve from rest: 80 cycles), where steps of a Newton
+  // method take 9 to 15; full solves took 0.19 instead of 0.28 s (elephant), 0.73 instead of
+  // 0.89 s (armadillo), 3.8 instead of 5.7 s (koala) and about 5.5 instead of 9.5 s (240k
+  // faces) (docs/performance.md). After the bench's 60-frame drags that cycle lowers the
+  // energy by 1e-5 to 1e-4 of it, after a jump or from rest by 0.1 to 0.6. 0: cycles there
+  // too. A step takes 0.4-0.9 s at 240k faces: the editor interrupts it when a newer request
+  // comes (SolveOptions::interrupt).
   double newton_krylov_above = 1e-2;
   NewtonKrylovOptions newton_krylov;
 };
