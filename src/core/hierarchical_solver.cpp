@@ -497,10 +497,9 @@ double HierarchicalSolver::cycle(std::vector<BodyState>& fine_state, double ener
   if (settle_start_decrease_ && !settle_from_afar_)
     settle_from_afar_ = options_.newton_krylov_above > 0.0 &&
                         *settle_start_decrease_ > options_.newton_krylov_above;
-  const bool newton =
-      !krylov_failed_ && !confirming &&
-      (settle_from_afar_.value_or(false) ||
-       (settling && last_decrease_ < options_.newton_krylov_below));
+  const bool newton = !krylov_failed_ && !confirming &&
+                      (settle_from_afar_.value_or(false) ||
+                       (settling && last_decrease_ < options_.newton_krylov_below));
   if (newton) {
     const auto t = Clock::now();
     if (!newton_krylov_)
