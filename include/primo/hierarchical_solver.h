@@ -90,7 +90,7 @@ struct HierarchicalOptions {
   // frame) lowered the energy by more than this fraction, the state is far from the minimum (a
   // jump or a solve from rest, not a drag that followed the hand): the rest of that solve is
   // Newton-Krylov steps, from the next iteration on (deciding a cycle later cost the 240k
-  // solve from rest a cycle for the same steps). There the cycles spend most of their
+  // solve from rest a third cycle for the same ten steps). There the cycles spend most of their
   // iterations (the 240k drag benchmark's solve from rest: 80 cycles), where steps of a Newton
   // method take 9 to 15; full solves took 0.19 instead of 0.28 s (elephant), 0.73 instead of
   // 0.89 s (armadillo), 3.8 instead of 5.7 s (koala) and about 5.5 instead of 9.5 s (240k
