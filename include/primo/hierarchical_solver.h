@@ -148,7 +148,6 @@ class HierarchicalSolver {
     krylov_failed_ = false;
     last_decrease_ = 1.0;
     last_was_newton_ = false;
-    settle_from_afar_.reset();
     settle_start_decrease_.reset();
   }
 
@@ -209,10 +208,8 @@ class HierarchicalSolver {
   bool krylov_failed_ = false;    // a step did not lower the energy since the targets moved
   double last_decrease_ = 1.0;    // relative energy decrease of the last iteration
   bool last_was_newton_ = false;  // the last iteration was a Newton-Krylov step
-  // Whether this settle (since the targets last moved) started far from the minimum
-  // (HierarchicalOptions::newton_krylov_above); unknown until the targets have stayed put.
-  std::optional<bool> settle_from_afar_;
-  // The relative decrease of the first cycle at fixed targets (the second since they moved).
+  // The relative decrease of the first cycle at fixed targets (the second since they moved):
+  // whether this settle started far from the minimum (newton_krylov_above), and near it.
   std::optional<double> settle_start_decrease_;
   HierarchicalTimings timings_;
 };

@@ -494,12 +494,11 @@ double HierarchicalSolver::cycle(std::vector<BodyState>& fine_state, double ener
   // The first cycle at fixed targets has run (the drag's last frame made the one before it).
   if (cycles_since_restart_ >= kMovingCycles && !settle_start_decrease_)
     settle_start_decrease_ = last_decrease_;
-  if (settle_start_decrease_ && !settle_from_afar_)
-    settle_from_afar_ = options_.newton_krylov_above > 0.0 &&
-                        *settle_start_decrease_ > options_.newton_krylov_above;
+  // This settle started far from the minimum (HierarchicalOptions::newton_krylov_above).
+  const bool from_afar = options_.newton_krylov_above > 0.0 && settle_start_decrease_ &&
+                         *settle_start_decrease_ > options_.newton_krylov_above;
   const bool newton = !krylov_failed_ && !confirming &&
-                      (settle_from_afar_.value_or(false) ||
-                       (settling && last_decrease_ < options_.newton_krylov_below));
+                      (from_afar || (settling && last_decrease_ < options_.newton_krylov_below));
   if (newton) {
     const auto t = Clock::now();
     if (!newton_krylov_)
