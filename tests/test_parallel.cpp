@@ -66,6 +66,21 @@ TEST(Parallel, ChunksDependOnTheSizeAloneAndSumsOnNoThreadCount) {
   for (double s : sums) EXPECT_EQ(s, sums.front());
 }
 
+TEST(Parallel, CopiesEveryElementIntoAVectorOfAnySize) {
+  std::vector<Vec3> from(50000);
+  for (size_t i = 0; i < from.size(); ++i) from[i] = Vec3(double(i), -double(i), 0.5 * double(i));
+  for (int threads : {1, 3}) {
+    ThreadCount count(threads);
+    std::vector<Vec3> fresh, same(from.size(), Vec3::Constant(7.0)), longer(from.size() + 5);
+    parallel_copy(from, fresh);
+    parallel_copy(from, same);  // in place, in chunks
+    parallel_copy(from, longer);
+    EXPECT_TRUE(same_bits(fresh, from));
+    EXPECT_TRUE(same_bits(same, from));
+    EXPECT_TRUE(same_bits(longer, from));
+  }
+}
+
 TEST(Parallel, SolvesGiveIdenticalVerticesOnOneTwoThreeAndEightThreads) {
   // 19,200 quads: eight sweep parts on the finest level, gradient and energy in chunks.
   const test::BentCylinder c = test::bent_cylinder(96, 200, 120.0);

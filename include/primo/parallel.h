@@ -46,6 +46,20 @@ void parallel_chunks(size_t n, size_t grain, Body&& body) {
   });
 }
 
+// to = from, the elements copied in parallel when `to` has their number already (a state kept
+// from iteration to iteration; otherwise copied at once). A state of 180,000 bodies is 17 MB:
+// copied on one thread it left the other cores idle for 5-8 ms.
+template <class T>
+void parallel_copy(const std::vector<T>& from, std::vector<T>& to) {
+  if (to.size() != from.size()) {  // a fresh copy at once: resizing first would construct
+    to = from;
+    return;
+  }
+  parallel_chunks(from.size(), kParallelGrain, [&](size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i) to[i] = from[i];
+  });
+}
+
 // combine(...combine(combine(zero, part(chunk 0)), part(chunk 1))..., part(chunk K-1)): the
 // chunks' results folded in chunk order, so the result does not depend on the thread count.
 template <class T, class Part, class Combine>

@@ -399,7 +399,7 @@ SolveReport Deformer::solve_now(const SolveOptions& options) {
 
 std::optional<double> Deformer::guarded_iterate(const SolveOptions& options, double e,
                                                 SolveReport& report) {
-  last_good_state_ = state_;  // reuses its capacity: a copy, no allocation after the first
+  parallel_copy(state_, last_good_state_);  // reuses its capacity after the first
   const std::optional<double> after = iterate(options, e, report);
   if (!after || std::isfinite(*after)) return after;
   // An iteration went to NaN or infinity (a value too large for the solver somewhere): the

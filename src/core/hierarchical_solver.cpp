@@ -536,7 +536,7 @@ double HierarchicalSolver::cycle_only(std::vector<BodyState>& fine_state, double
   // The acceleration knows the state its last proposal left (kept or refused) by its
   // embedding; only the first accelerated cycle needs a copy of the input.
   const bool input_known = accelerate && acceleration_.knows_input();
-  if (accelerate && !input_known) cycle_input_ = fine_state;
+  if (accelerate && !input_known) parallel_copy(fine_state, cycle_input_);
   // With the energy before the cycle known, an accelerated proposal is kept when it lies below
   // it (still a descent method), and the plain cycle's result needs no energy of its own
   // unless the proposal is refused: one pass over all joints less per accepted cycle.

@@ -121,12 +121,17 @@ struct NewtonKrylov::Impl {
     const BlockMatrix& h = hessian().matrix();
     const BlockVector& gradient = hessian().gradient();
     const size_t n = gradient.size();
-    x.assign(n, Vec6::Zero());
+    x.resize(n);
     r.resize(n);
-    for (size_t b = 0; b < n; ++b) r[b] = -gradient[b];
+    parallel_chunks(n, kParallelGrain, [&](size_t begin, size_t end) {
+      for (size_t b = begin; b < end; ++b) {
+        x[b].setZero();
+        r[b] = -gradient[b];
+      }
+    });
     multigrid().apply(r, z);
     ++step.preconditioner_applications;
-    p = z;
+    parallel_copy(z, p);
     double rz = dot(r, z);
     if (!(rz > 0.0)) return 0;
     double model_decrease = 0.0;
@@ -190,8 +195,10 @@ NewtonKrylovStep NewtonKrylov::iterate(std::vector<BodyState>& state, double ene
   step.energy_before = std::isnan(energy_before) ? m.sys.energy(state) : energy_before;
   step.energy_after = step.energy_before;
   m.position.resize(state.size());
-  for (size_t r = 0; r < state.size(); ++r)
-    m.position[r] = state[size_t(m.hessian().order()[r])].position;
+  const std::vector<int>& order = m.hessian().order();
+  parallel_chunks(state.size(), kParallelGrain, [&](size_t begin, size_t end) {
+    for (size_t r = begin; r < end; ++r) m.position[r] = state[size_t(order[r])].position;
+  });
 
   // The exact Hessian first; Gauss-Newton's when it or a block the preconditioner inverts is
   // not positive definite (assembled again then: keeping both would cost memory every step
