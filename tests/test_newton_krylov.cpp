@@ -285,7 +285,7 @@ TEST(RigidHessian, RowsInTheMultigridsOrderAreTheSameBlocksAndStepsMoveTheSameBo
   Posed p = posed_cylinder(kAroundForParts, kRingsForParts, 0);
   const RigidSystem& sys = p.deformer.system();
   const std::vector<BodyState>& state = p.deformer.body_states();
-  RigidHessian by_body(sys), by_row(sys, multigrid_row_order(sys));
+  RigidHessian by_body(sys), by_row(sys, multigrid_rows(sys).order);
   by_body.assemble(state, true);
   by_row.assemble(state, true);
   const std::vector<int>& order = by_row.order();
@@ -335,7 +335,7 @@ TEST(RigidMultigrid, RowsInItsOwnOrderGiveTheSameCycle) {
   const std::vector<BodyState>& state = p.deformer.body_states();
   MultigridOptions options;
   options.coarsest_max_bodies = 300;
-  RigidHessian by_body(sys), by_row(sys, multigrid_row_order(sys));
+  RigidHessian by_body(sys), by_row(sys, multigrid_rows(sys).order);
   by_body.assemble(state, false);  // at rest with the handles moved: Gauss-Newton's is definite
   by_row.assemble(state, false);
   const std::vector<int>& order = by_row.order();
@@ -344,8 +344,12 @@ TEST(RigidMultigrid, RowsInItsOwnOrderGiveTheSameCycle) {
   for (int b : order) position_rows.push_back(state[size_t(b)].position);
   RigidMultigrid plain(sys, by_body.matrix().pairs, options);
   RigidMultigrid ordered(sys, by_row.matrix().pairs, options, order);
+  // Given the partition the row order came from instead of partitioning the rows again: the
+  // same parts and colours, so the same bits.
+  RigidMultigrid given(sys, by_row.matrix().pairs, options, order, multigrid_rows(sys).partition);
   ASSERT_TRUE(plain.set_matrix(by_body.matrix(), position));
   ASSERT_TRUE(ordered.set_matrix(by_row.matrix(), position_rows));
+  ASSERT_TRUE(given.set_matrix(by_row.matrix(), position_rows));
   ASSERT_EQ(plain.levels(), ordered.levels());
   EXPECT_GE(plain.levels(), 4);
   const BlockVector r = random_direction(sys, 9);
@@ -353,6 +357,9 @@ TEST(RigidMultigrid, RowsInItsOwnOrderGiveTheSameCycle) {
   for (size_t k = 0; k < r.size(); ++k) r_rows[k] = r[size_t(order[k])];
   plain.apply(r, z);
   ordered.apply(r_rows, z_rows);
+  BlockVector z_given;
+  given.apply(r_rows, z_given);
+  for (size_t k = 0; k < r.size(); ++k) ASSERT_EQ(z_given[k], z_rows[k]) << "row " << k;
   double largest = 0.0, difference = 0.0;
   for (size_t k = 0; k < r.size(); ++k) {
     largest = std::max(largest, z[size_t(order[k])].norm());

@@ -25,8 +25,9 @@ inline constexpr size_t kBodiesPerPart = 2000;
 inline constexpr int kMaxPartLevels = 7;  // at most 2^7 = 128 parts
 
 // `bodies` (those that move) split about `bodies_per_part` a part, at most 2^max_levels parts
-// (0: one part); `edges` are the coupled pairs of bodies (any order, repeats allowed),
-// `position` is indexed by body.
+// (0: one part); `edges` are the coupled pairs of bodies (any order, repeats allowed; a pair
+// with a negative end, a coupling to a body that does not move, is ignored), `position` is
+// indexed by body.
 BodyPartition partition_bodies(std::vector<int> bodies, const std::vector<Vec3>& position,
                                const std::vector<std::pair<int, int>>& edges,
                                size_t bodies_per_part = kBodiesPerPart,

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "primo/block_matrix.h"
+#include "primo/body_partition.h"
 #include "primo/rigid_system.h"
 
 namespace primo {
@@ -36,21 +37,29 @@ struct MultigridOptions {
   int coarse_visits = 2;
 };
 
-// The bodies of `fine` part after part of the smoothing partition of the cycle's finest sweeps
-// (by rest positions and coupled pairs, as the multigrid partitions that level), each part in
-// index order. A fine matrix whose rows are in this order (rigid_hessian.h) lets those sweeps
-// stream each part's blocks: at 192,000 bodies a cycle took 105 ms in body order
-// (`primo_microbench --benchmark_filter=MultigridCycle`).
-std::vector<int> multigrid_row_order(const RigidSystem& fine);
+// The smoothing partition of the cycle's finest sweeps (by rest positions and coupled pairs),
+// and the rows it numbers: the bodies of `fine` part after part, each part in index order, so
+// that every part's rows are contiguous. A fine matrix whose rows are in this order
+// (rigid_hessian.h) lets those sweeps stream each part's blocks: at 192,000 bodies a cycle
+// took 105 ms in body order (`primo_microbench --benchmark_filter=MultigridCycle`).
+struct MultigridRows {
+  std::vector<int> order;  // the body of each row
+  // Of the rows: what partitioning them again would give (the same parts, as runs of rows).
+  BodyPartition partition;
+};
+MultigridRows multigrid_rows(const RigidSystem& fine);
 
 class RigidMultigrid {
  public:
   // Levels for the bodies of `fine` (handles stay alone in their clusters) and fine matrices
   // whose off-diagonal blocks are `fine_pairs`, with row r for body fine_order[r] (empty: row b
-  // for body b; rigid_hessian.h). Coarse levels number their clusters part after part of
-  // their smoothing partitions: a sweep then streams each part's rows.
+  // for body b; rigid_hessian.h). `fine_partition` is the fine level's smoothing partition
+  // of those rows (multigrid_rows' for its order), made here when empty. Coarse levels number
+  // their clusters part after part of their smoothing partitions: a sweep then streams each
+  // part's rows.
   RigidMultigrid(const RigidSystem& fine, const std::vector<std::pair<int, int>>& fine_pairs,
-                 const MultigridOptions& options = {}, const std::vector<int>& fine_order = {});
+                 const MultigridOptions& options = {}, const std::vector<int>& fine_order = {},
+                 BodyPartition fine_partition = {});
   ~RigidMultigrid();
   RigidMultigrid(const RigidMultigrid&) = delete;
   RigidMultigrid& operator=(const RigidMultigrid&) = delete;

@@ -195,8 +195,11 @@ struct LimbHessian {
   BlockVector residual;  // the negative gradient, what conjugate gradients start from
 
   explicit LimbHessian(const Limb& limb)
-      : hessian(limb.deformer.system(), multigrid_row_order(limb.deformer.system())),
-        multigrid(limb.deformer.system(), hessian.matrix().pairs, {}, hessian.order()) {
+      : LimbHessian(limb, multigrid_rows(limb.deformer.system())) {}
+  LimbHessian(const Limb& limb, MultigridRows rows)
+      : hessian(limb.deformer.system(), std::move(rows.order)),
+        multigrid(limb.deformer.system(), hessian.matrix().pairs, {}, hessian.order(),
+                  std::move(rows.partition)) {
     hessian.assemble(limb.state, /*second_order=*/true);
     std::vector<Vec3> position;
     for (int body : hessian.order()) position.push_back(limb.state[size_t(body)].position);
@@ -272,8 +275,10 @@ BENCHMARK(NewtonKrylovMove)->Arg(4800)->Unit(benchmark::kMillisecond)->UseRealTi
 void NewtonKrylovStructure(benchmark::State& run) {
   const RigidSystem& system = Limb::of(int(run.range(0))).deformer.system();
   for (auto _ : run) {
-    RigidHessian hessian(system, multigrid_row_order(system));
-    RigidMultigrid multigrid(system, hessian.matrix().pairs, {}, hessian.order());
+    MultigridRows rows = multigrid_rows(system);
+    RigidHessian hessian(system, std::move(rows.order));
+    RigidMultigrid multigrid(system, hessian.matrix().pairs, {}, hessian.order(),
+                             std::move(rows.partition));
     benchmark::DoNotOptimize(multigrid.levels());
   }
   run.SetItemsProcessed(run.iterations() * system.n_bodies());

@@ -44,6 +44,7 @@ std::vector<std::vector<int>> colour_parts(size_t n_bodies,
     for (int b : parts[p]) part_of[size_t(b)] = int(p);
   std::vector<std::vector<int>> touching(parts.size());
   for (const auto& [a, b] : edges) {
+    if (a < 0 || b < 0) continue;  // a coupling to a body that does not move
     const int p0 = part_of[size_t(a)], p1 = part_of[size_t(b)];
     if (p0 >= 0 && p1 >= 0 && p0 != p1) {
       touching[size_t(p0)].push_back(p1);

@@ -16,7 +16,7 @@ struct NewtonKrylov::Impl {
   // The structure, built by the first step in three parts with `interrupt` asked between
   // them (at 240k faces it takes 0.25-0.3 s, and the editor's settle must give way to a new
   // drag within a fraction of that), or at once by build_structure.
-  std::vector<int> row_order;  // until the Hessian takes it
+  MultigridRows rows;  // the order until the Hessian takes it, the partition until the multigrid
   std::unique_ptr<RigidHessian> hessian_storage;
   std::unique_ptr<RigidMultigrid> multigrid_storage;
   BlockVector x, r, z, p, q;
@@ -29,16 +29,17 @@ struct NewtonKrylov::Impl {
   bool build(const std::function<bool()>& interrupt) {
     auto interrupted = [&] { return interrupt && interrupt(); };
     if (!hessian_storage) {
-      if (row_order.empty()) {
-        row_order = multigrid_row_order(sys);
+      if (rows.order.empty()) {
+        rows = multigrid_rows(sys);
         if (interrupted()) return false;
       }
-      hessian_storage = std::make_unique<RigidHessian>(sys, std::move(row_order));
+      hessian_storage = std::make_unique<RigidHessian>(sys, std::move(rows.order));
       if (interrupted()) return false;
     }
     if (!multigrid_storage)
-      multigrid_storage = std::make_unique<RigidMultigrid>(
-          sys, hessian_storage->matrix().pairs, options.multigrid, hessian_storage->order());
+      multigrid_storage =
+          std::make_unique<RigidMultigrid>(sys, hessian_storage->matrix().pairs, options.multigrid,
+                                           hessian_storage->order(), std::move(rows.partition));
     return true;
   }
   RigidHessian& hessian() { return *hessian_storage; }

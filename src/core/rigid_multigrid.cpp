@@ -122,23 +122,30 @@ struct RigidMultigrid::Coarsest {
   bool analyzed = false;
 };
 
-std::vector<int> multigrid_row_order(const RigidSystem& fine) {
+MultigridRows multigrid_rows(const RigidSystem& fine) {
   const int n = fine.n_bodies();
   std::vector<int> all(static_cast<size_t>(n));
   std::iota(all.begin(), all.end(), 0);
   std::vector<Vec3> position(static_cast<size_t>(n));
   for (int b = 0; b < n; ++b) position[size_t(b)] = fine.bodies[size_t(b)].rest_center;
-  std::vector<int> order;
-  order.reserve(size_t(n));
-  for (const std::vector<int>& part :
-       partition_bodies(std::move(all), position, moving_coupling_edges(fine)).parts)
-    order.insert(order.end(), part.begin(), part.end());
-  return order;
+  MultigridRows rows;
+  rows.partition = partition_bodies(std::move(all), position, moving_coupling_edges(fine));
+  // Partitioning the rows (the same positions and pairs, renumbered) would give these parts
+  // as runs of rows: each bisection splits the same set, and ties at a median go by index,
+  // which the rows order as the bodies' split ordered them. The colours stay.
+  rows.order.reserve(size_t(n));
+  for (std::vector<int>& part : rows.partition.parts)
+    for (int& body : part) {
+      rows.order.push_back(body);
+      body = int(rows.order.size()) - 1;
+    }
+  return rows;
 }
 
 RigidMultigrid::RigidMultigrid(const RigidSystem& fine,
                                const std::vector<std::pair<int, int>>& fine_pairs,
-                               const MultigridOptions& options, const std::vector<int>& fine_order)
+                               const MultigridOptions& options, const std::vector<int>& fine_order,
+                               BodyPartition fine_partition)
     : options_(options) {
   HierarchyOptions hierarchy_options;
   hierarchy_options.cluster_size = options.cluster_size;
@@ -156,7 +163,9 @@ RigidMultigrid::RigidMultigrid(const RigidSystem& fine,
   fine_level->position.resize(size_t(n_fine));
   for (int b = 0; b < n_fine; ++b)
     fine_level->position[size_t(row_of_body[size_t(b)])] = fine.bodies[size_t(b)].rest_center;
-  if (hierarchy.coarse_levels() > 0) {
+  if (hierarchy.coarse_levels() > 0 && !fine_partition.parts.empty()) {
+    fine_level->partition = std::move(fine_partition);
+  } else if (hierarchy.coarse_levels() > 0) {
     std::vector<int> all(static_cast<size_t>(n_fine));
     std::iota(all.begin(), all.end(), 0);
     fine_level->partition = partition_bodies(std::move(all), fine_level->position, fine_pairs);
