@@ -27,7 +27,8 @@ std::vector<Vec3> run(TriangleMesh& mesh, const std::vector<int>& control_vertic
   Deformation deformation(mesh);
   deformation.insert_roi_vertices(mesh.vertices().begin(), mesh.vertices().end());
   for (size_t i = 0; i < control_vertices.size(); ++i) {
-    const TriangleMesh::Vertex_index v(TriangleMesh::size_type(control_vertices[i]));
+    // Braces: with parentheses clang reads a function declaration (the most vexing parse).
+    const TriangleMesh::Vertex_index v{TriangleMesh::size_type(control_vertices[i])};
     deformation.insert_control_vertex(v);
     const Vec3& t = targets[i];
     deformation.set_target_position(v, Kernel::Point_3(t.x(), t.y(), t.z()));
