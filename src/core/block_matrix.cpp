@@ -39,12 +39,10 @@ void BlockMatrix::set_structure(int n, std::vector<std::pair<int, int>> coupled_
 }
 
 namespace {
-// A row's product takes about 100 ns: 512 rows a chunk pay for a task, and the multigrid's
-// coarse levels (2,800 rows at 240k faces, multiplied 8 times an application) are split too.
 template <class V>
 void multiply_rows(const BlockMatrix& a, const std::vector<V>& x, std::vector<V>& y) {
   y.resize(a.diag.size());
-  parallel_chunks(a.diag.size(), kParallelGrain / 16, [&](size_t begin, size_t end) {
+  parallel_chunks(a.diag.size(), kBlockRowGrain, [&](size_t begin, size_t end) {
     for (size_t b = begin; b < end; ++b) y[b] = a.row_product(int(b), x);
   });
 }

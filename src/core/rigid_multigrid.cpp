@@ -41,11 +41,6 @@ constexpr int kGatherAhead = 4;
 // 1682, 1617 against 1614, 1497 (noise at its size); and more cores get more parts to share.
 constexpr size_t kCoarseRowsPerPart = 500;
 
-// Rows a chunk of a row-by-row loop (residual, prolongation) has: about 100 ns a row, so
-// that the coarse levels (2,800 rows at 240k faces, visited 8 times an application) are split
-// too, where 2,048 left them on one thread.
-constexpr size_t kRowGrain = kParallelGrain / 16;
-
 }  // namespace
 
 struct RigidMultigrid::Level {
@@ -410,14 +405,14 @@ void RigidMultigrid::cycle(size_t l, const BlockVectorF& rhs, BlockVectorF& x) {
     sweep(level, rhs, x, Sweep::FromZero);
     // Each row was solved with the rows before it as they are now and the rows after it at
     // zero: its residual is what the rows after it add.
-    parallel_chunks(n, kRowGrain, [&](size_t begin, size_t end) {
+    parallel_chunks(n, kBlockRowGrain, [&](size_t begin, size_t end) {
       for (size_t b = begin; b < end; ++b)
         level.residual[b] = -level.slots_product(int(b), level.slots_before[b],
                                                  a.row_begin[b + 1] - a.row_begin[b], x);
     });
   } else {
     for (int s = 0; s < options_.smoothing_sweeps; ++s) sweep(level, rhs, x, Sweep::Forward);
-    parallel_chunks(n, kRowGrain, [&](size_t begin, size_t end) {
+    parallel_chunks(n, kBlockRowGrain, [&](size_t begin, size_t end) {
       for (size_t b = begin; b < end; ++b) level.residual[b] = rhs[b] - a.row_product(int(b), x);
     });
   }
@@ -440,7 +435,7 @@ void RigidMultigrid::cycle(size_t l, const BlockVectorF& rhs, BlockVectorF& x) {
     krylov_correction(l + 1);
   else
     cycle(l + 1, coarse.rhs, coarse.x);
-  parallel_chunks(n, kRowGrain, [&](size_t begin, size_t end) {
+  parallel_chunks(n, kBlockRowGrain, [&](size_t begin, size_t end) {
     for (size_t b = begin; b < end; ++b) {
       const Vec6f& c = coarse.x[size_t(level.parent[b])];
       x[b].head<3>() += c.head<3>() + Eigen::Vector3f(c.tail<3>()).cross(level.arm_f[b]);
