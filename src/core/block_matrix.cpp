@@ -181,22 +181,18 @@ void RigidDiagonalBlock::add_pair(const PairBlockSum& p) {
   turn += p.turn + p.turn.transpose();
 }
 
-bool RigidDiagonalBlock::inverse(Mat6& out) const {
-  // With A = w I, B = -[a]x: the Schur complement S = turn + [a]x[a]x / w, and the inverse
-  // [[I/w - M [a]x / w, M], [M^T, S^-1]] with M = [a]x S^-1 / w.
-  if (!(weight > 0.0)) return false;
-  const double iw = 1.0 / weight;
-  Mat3 schur = 0.5 * (turn + turn.transpose()) + iw * (arm * arm.transpose());
-  schur.diagonal().array() -= iw * arm.squaredNorm();
+bool RigidInverse::of(const RigidDiagonalBlock& block, RigidInverse& out) {
+  if (!(block.weight > 0.0)) return false;
+  const double iw = 1.0 / block.weight;
+  Mat3 schur =
+      0.5 * (block.turn + block.turn.transpose()) + iw * (block.arm * block.arm.transpose());
+  schur.diagonal().array() -= iw * block.arm.squaredNorm();
   Mat3 s_inverse;
   if (!spd_inverse3(schur, s_inverse)) return false;
-  const Mat3 ax = cross_matrix(arm);
-  const Mat3 m = iw * (ax * s_inverse);
-  out.topLeftCorner<3, 3>() = -iw * (m * ax);
-  out.topLeftCorner<3, 3>().diagonal().array() += iw;
-  out.topRightCorner<3, 3>() = m;
-  out.bottomLeftCorner<3, 3>() = m.transpose();
-  out.bottomRightCorner<3, 3>() = s_inverse;
+  out.inverse_weight = float(iw);
+  out.arm = block.arm.cast<float>();
+  out.schur_inverse = {float(s_inverse(0, 0)), float(s_inverse(0, 1)), float(s_inverse(0, 2)),
+                       float(s_inverse(1, 1)), float(s_inverse(1, 2)), float(s_inverse(2, 2))};
   return true;
 }
 

@@ -21,11 +21,11 @@ using SparseMatrix = Eigen::SparseMatrix<double>;
 // the next rows' blocks while it computes; it is told to, a few rows ahead (at 240k faces a
 // cycle took 44 instead of 53 ms, in alternating runs).
 constexpr size_t kPrefetchRows = 3;
-void prefetch_row(const BlockMatrix& a, const std::vector<Mat6f>& diag_inverse, int row) {
+void prefetch_row(const BlockMatrix& a, const std::vector<RigidInverse>& diag_inverse, int row) {
   prefetch_bytes(
       a.row_block.data() + a.row_begin[size_t(row)],
       size_t(a.row_begin[size_t(row) + 1] - a.row_begin[size_t(row)]) * sizeof(PairBlock));
-  prefetch_bytes(&diag_inverse[size_t(row)], sizeof(Mat6f));
+  prefetch_bytes(&diag_inverse[size_t(row)], sizeof(RigidInverse));
 }
 
 // The Galerkin projection gathers each coarse block from finer pair blocks scattered through
@@ -47,7 +47,7 @@ struct RigidMultigrid::Level {
   const BlockMatrix* matrix = nullptr;  // the caller's on the fine level, else `own`
   BlockMatrix own;
   BodyPartition partition;
-  std::vector<Mat6f> diag_inverse;
+  std::vector<RigidInverse> diag_inverse;
   std::vector<Vec3> position;  // of the bodies, at set_matrix
   // Towards the next coarser level (empty on the coarsest):
   std::vector<int> parent;  // body -> cluster
@@ -295,10 +295,10 @@ bool RigidMultigrid::set_matrix(const BlockMatrix& fine, const std::vector<Vec3>
         for (int k = coarse.children.begin[c]; k < coarse.children.begin[c + 1]; ++k) {
           const size_t b = size_t(coarse.children.items[size_t(k)]);
           RigidDiagonalBlock child;
-          Mat6 inverse = Mat6::Zero();
           // Only a rigid Hessian's blocks project this way (block_matrix.h).
-          if (!RigidDiagonalBlock::read(a.diag[b], child) || !child.inverse(inverse)) failed[c] = 1;
-          finer.diag_inverse[b] = inverse.cast<BlockScalar>();
+          if (!RigidDiagonalBlock::read(a.diag[b], child) ||
+              !RigidInverse::of(child, finer.diag_inverse[b]))
+            failed[c] = 1;
           sum.add_shifted(child, finer.arm[b]);
         }
         for (int k = coarse.internal.begin[c]; k < coarse.internal.begin[c + 1]; ++k) {
@@ -379,7 +379,7 @@ void RigidMultigrid::sweep(const Level& level, const BlockVectorF& rhs, BlockVec
                               ? level.slots_product(b, 0, level.slots_before[size_t(b)], x)
                           : forward ? a.off_product(b, x)
                                     : a.off_product_descending(b, x);
-        x[size_t(b)] = times(level.diag_inverse[size_t(b)], Vec6f(rhs[size_t(b)] - off));
+        x[size_t(b)] = level.diag_inverse[size_t(b)].times(Vec6f(rhs[size_t(b)] - off));
       }
     });
   }
