@@ -21,7 +21,6 @@ using BlockVectorF = std::vector<Vec6f>;
 // Blocks are stored in single precision: products with them are bound by memory traffic, and
 // conjugate gradients only solve to a few digits (vectors and sums stay double).
 using BlockScalar = float;
-using Mat6f = Eigen::Matrix<BlockScalar, 6, 6>;
 
 // The block of two bodies whose energy is a sum of squared differences of points, each moved
 // rigidly by one of them (a joint: the residuals X_row - X_column; a cluster pair of the
@@ -148,9 +147,6 @@ struct RigidDiagonalBlock {
   Vec3 arm = Vec3::Zero();
   Mat3 turn = Mat3::Zero();
 
-  // The form of `m`; false when `m` does not have it (shifts not weight I, or the arm blocks
-  // not [arm]x and its negative).
-  static bool read(const Mat6f& m, RigidDiagonalBlock& out);
   // += T^T b T for the rigid transfer T = [[I, -[d]x], [0, I]] (b seen from a point -d away).
   void add_shifted(const RigidDiagonalBlock& b, const Vec3& d);
   // += p + p^T: a pair of bodies that one cluster holds both of.
@@ -186,20 +182,39 @@ struct RigidInverse {
   }
 };
 
-// m x in the vector's precision for a block stored in single precision, column by column:
-// Eigen's m.cast<double>() * x took 12% longer in a product with the Hessian at 192,000 bodies.
-template <class T>
-Eigen::Matrix<T, 6, 1> times(const Mat6f& m, const Eigen::Matrix<T, 6, 1>& x) {
-  Eigen::Matrix<T, 6, 1> y = Eigen::Matrix<T, 6, 1>::Zero();
-  for (int c = 0; c < 6; ++c) {
-    const T xc = x[c];
-    for (int r = 0; r < 6; ++r) y[r] += T(m(r, c)) * xc;
+// A diagonal block as a BlockMatrix stores it: a RigidDiagonalBlock's numbers in single
+// precision, its turn (symmetric: the energy's second derivative) in six, 40 bytes where a
+// dense 6x6 block takes 144. The Hessian's assembly writes every row's block and the
+// multigrid's set-up reads it: at 192,000 bodies they took 35-44 ms (median 38.1 of five
+// alternating runs) instead of 35-50 (42.9), and 31-32 ms instead of 34-43 (40.1); products
+// with the Hessian the same (its double arithmetic costs what the smaller reads save).
+struct DiagonalBlock {
+  float weight = 0.0f;
+  Eigen::Vector3f arm = Eigen::Vector3f::Zero();
+  std::array<float, 6> turn{};  // xx, xy, xz, yy, yz, zz
+
+  // `block` in single precision, its turn symmetrized.
+  static DiagonalBlock of(const RigidDiagonalBlock& block);
+  RigidDiagonalBlock widened() const;
+  Mat6 dense() const { return widened().dense(); }
+  // [[w I, -[a]x], [[a]x, turn]] x in the vector's precision.
+  template <class T>
+  Eigen::Matrix<T, 6, 1> times(const Eigen::Matrix<T, 6, 1>& x) const {
+    using V3 = Eigen::Matrix<T, 3, 1>;
+    const V3 v = x.template head<3>(), w = x.template tail<3>();
+    const V3 a = arm.cast<T>();
+    const V3 turned(T(turn[0]) * w[0] + T(turn[1]) * w[1] + T(turn[2]) * w[2],
+                    T(turn[1]) * w[0] + T(turn[3]) * w[1] + T(turn[4]) * w[2],
+                    T(turn[2]) * w[0] + T(turn[4]) * w[1] + T(turn[5]) * w[2]);
+    Eigen::Matrix<T, 6, 1> y;
+    y.template head<3>() = T(weight) * v - a.cross(w);
+    y.template tail<3>() = a.cross(v) + turned;
+    return y;
   }
-  return y;
-}
+};
 
 struct BlockMatrix {
-  std::vector<Mat6f> diag;
+  std::vector<DiagonalBlock> diag;
   // The coupled pairs (row body, column body), row > column, each once.
   std::vector<std::pair<int, int>> pairs;
   // Each body's off-diagonal blocks, contiguous by row (CSR over bodies, in pair order): the
@@ -243,7 +258,7 @@ struct BlockMatrix {
   // Row `body` of A x.
   template <class V>
   V row_product(int body, const std::vector<V>& x) const {
-    return times(diag[size_t(body)], x[size_t(body)]) + off_product(body, x);
+    return diag[size_t(body)].times(x[size_t(body)]) + off_product(body, x);
   }
   // y = A x, in parallel by rows (the same bits on any number of threads).
   void multiply(const BlockVector& x, BlockVector& y) const;

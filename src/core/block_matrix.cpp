@@ -17,7 +17,7 @@ void BlockMatrix::set_structure(int n, std::vector<std::pair<int, int>> coupled_
       for (size_t k = begin; k < end; ++k) blocks[k] = zero_block;
     });
   };
-  zero(diag, size_t(n), Mat6f::Zero().eval());
+  zero(diag, size_t(n), DiagonalBlock{});
   row_begin.assign(size_t(n) + 1, 0);
   for (const auto& [a, b] : pairs) {
     ++row_begin[size_t(a) + 1];
@@ -147,23 +147,6 @@ bool spd_inverse3(const Mat3& m, Mat3& inverse) {
 
 }  // namespace
 
-bool RigidDiagonalBlock::read(const Mat6f& m, RigidDiagonalBlock& out) {
-  const float w = m(0, 0);
-  for (int r = 0; r < 3; ++r)
-    for (int c = 0; c < 3; ++c) {
-      if (m(r, c) != (r == c ? w : 0.0f)) return false;
-      if (m(r, 3 + c) != m(3 + c, r)) return false;  // -[arm]x = [arm]x^T
-    }
-  // [arm]x below the shifts: zero diagonal, antisymmetric.
-  if (m(3, 0) != 0.0f || m(4, 1) != 0.0f || m(5, 2) != 0.0f || m(3, 1) != -m(4, 0) ||
-      m(3, 2) != -m(5, 0) || m(4, 2) != -m(5, 1))
-    return false;
-  out.weight = double(w);
-  out.arm = Vec3(double(m(5, 1)), double(m(3, 2)), double(m(4, 0)));
-  out.turn = m.block<3, 3>(3, 3).cast<double>();
-  return true;
-}
-
 void RigidDiagonalBlock::add_shifted(const RigidDiagonalBlock& b, const Vec3& d) {
   // T^T b T = [[w I, -[a + w d]x], [[a + w d]x, turn - w [d]x[d]x - [d]x[a]x - [a]x[d]x]]
   // with [u]x[v]x = v u^T - (u . v) I.
@@ -194,6 +177,24 @@ bool RigidInverse::of(const RigidDiagonalBlock& block, RigidInverse& out) {
   out.schur_inverse = {float(s_inverse(0, 0)), float(s_inverse(0, 1)), float(s_inverse(0, 2)),
                        float(s_inverse(1, 1)), float(s_inverse(1, 2)), float(s_inverse(2, 2))};
   return true;
+}
+
+DiagonalBlock DiagonalBlock::of(const RigidDiagonalBlock& block) {
+  const Mat3& t = block.turn;
+  DiagonalBlock out;
+  out.weight = float(block.weight);
+  out.arm = block.arm.cast<float>();
+  out.turn = {float(t(0, 0)), float(0.5 * (t(0, 1) + t(1, 0))), float(0.5 * (t(0, 2) + t(2, 0))),
+              float(t(1, 1)), float(0.5 * (t(1, 2) + t(2, 1))), float(t(2, 2))};
+  return out;
+}
+
+RigidDiagonalBlock DiagonalBlock::widened() const {
+  RigidDiagonalBlock out;
+  out.weight = double(weight);
+  out.arm = arm.cast<double>();
+  out.turn << turn[0], turn[1], turn[2], turn[1], turn[3], turn[4], turn[2], turn[4], turn[5];
+  return out;
 }
 
 Mat6 RigidDiagonalBlock::dense() const {

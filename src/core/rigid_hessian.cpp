@@ -59,16 +59,13 @@ struct OwnSums {
 
   // h = [[W I, -[a]x], [[a]x, tr(YY) I - YY]], g = (sum w r, sum w y x r), and the
   // second-order term s = (RY + RY^T) / 2 - tr(RY) I, for the body turned by `rotation`.
-  void blocks(const Mat3& rotation, Mat6& h, Vec6& g, Mat3& s) const {
+  void blocks(const Mat3& rotation, RigidDiagonalBlock& h, Vec6& g, Mat3& s) const {
     const Mat3 coupled_yy = rotation * local_yy * rotation.transpose();
     const Mat3 all_yy = yy + coupled_yy, all_ry = ry + coupled_yy;
-    h.setZero();
-    h.block<3, 3>(0, 0).diagonal().setConstant(point_weight);
-    const Mat3 arm = cross_matrix(point_arm + rotation * local_arm);
-    h.block<3, 3>(0, 3) = -arm;
-    h.block<3, 3>(3, 0) = arm;
-    h.block<3, 3>(3, 3) = -all_yy;
-    h.block<3, 3>(3, 3).diagonal().array() += all_yy.trace();
+    h.weight = point_weight;
+    h.arm = point_arm + rotation * local_arm;
+    h.turn = -all_yy;
+    h.turn.diagonal().array() += all_yy.trace();
     g << point_pull, torque;
     s = 0.5 * (all_ry + all_ry.transpose());
     s.diagonal().array() -= all_ry.trace();
@@ -225,19 +222,25 @@ void RigidHessian::assemble(const std::vector<BodyState>& state, bool second_ord
           own.add(y, y + state[b].position - spring.target, spring.weight, true);
         }
       }
-      Mat6 h;
+      RigidDiagonalBlock h;
       Vec6 g;
       Mat3 s;
       own.blocks(state[b].rotation, h, g, s);
-      for (int d = 0; d < 6; ++d)
-        if (!(mask & (1 << d))) {
-          h.row(d).setZero();
-          h.col(d).setZero();
-          h(d, d) = 1.0;
-          g[d] = 0.0;
-        }
-      if (second_order && (mask & 0x38)) h.block<3, 3>(3, 3) += s;
-      matrix_.diag[row] = h.cast<BlockScalar>();
+      // A handle's fixed rows and columns zeroed, 1 on the diagonal (active_mask: all shifts,
+      // all turns or both), which keeps the block's form.
+      if (!(mask & 0x07)) {
+        h.weight = 1.0;
+        h.arm.setZero();
+        g.head<3>().setZero();
+      }
+      if (!(mask & 0x38)) {
+        h.turn.setIdentity();
+        h.arm.setZero();
+        g.tail<3>().setZero();
+      } else if (second_order) {
+        h.turn += s;
+      }
+      matrix_.diag[row] = DiagonalBlock::of(h);
       gradient_[row] = g;
       for (auto& [pair, h01] : crosses) {
         // Handles fix all their shifts, all their turns, or both (active_mask).

@@ -294,11 +294,8 @@ bool RigidMultigrid::set_matrix(const BlockMatrix& fine, const std::vector<Vec3>
         RigidDiagonalBlock sum;
         for (int k = coarse.children.begin[c]; k < coarse.children.begin[c + 1]; ++k) {
           const size_t b = size_t(coarse.children.items[size_t(k)]);
-          RigidDiagonalBlock child;
-          // Only a rigid Hessian's blocks project this way (block_matrix.h).
-          if (!RigidDiagonalBlock::read(a.diag[b], child) ||
-              !RigidInverse::of(child, finer.diag_inverse[b]))
-            failed[c] = 1;
+          const RigidDiagonalBlock child = a.diag[b].widened();
+          if (!RigidInverse::of(child, finer.diag_inverse[b])) failed[c] = 1;
           sum.add_shifted(child, finer.arm[b]);
         }
         for (int k = coarse.internal.begin[c]; k < coarse.internal.begin[c + 1]; ++k) {
@@ -309,7 +306,7 @@ bool RigidMultigrid::set_matrix(const BlockMatrix& fine, const std::vector<Vec3>
           const auto [i, j] = a.pairs[p];
           sum.add_pair(a.off(p).cast<double>().shifted(finer.arm[size_t(i)], finer.arm[size_t(j)]));
         }
-        m.diag[c] = sum.dense().cast<BlockScalar>();
+        m.diag[c] = DiagonalBlock::of(sum);
       }
     });
     if (std::find(failed.begin(), failed.end(), 1) != failed.end()) return false;
@@ -340,10 +337,12 @@ bool RigidMultigrid::set_matrix(const BlockMatrix& fine, const std::vector<Vec3>
   const BlockMatrix& last = *levels_.back()->matrix;
   double* values = co.matrix.valuePtr();
   std::fill(values, values + co.matrix.nonZeros(), 0.0);
-  for (size_t b = 0; b < last.diag.size(); ++b)
+  for (size_t b = 0; b < last.diag.size(); ++b) {
+    const Mat6 block = last.diag[b].dense();
     for (int k = 0; k < 36; ++k)
       if (co.diag_slots[b][size_t(k)] >= 0)
-        values[co.diag_slots[b][size_t(k)]] += double(last.diag[b](k / 6, k % 6));
+        values[co.diag_slots[b][size_t(k)]] += block(k / 6, k % 6);
+  }
   for (size_t p = 0; p < last.pairs.size(); ++p) {
     const Mat6 block = last.off(p).dense();
     for (int k = 0; k < 36; ++k)
