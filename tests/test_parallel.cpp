@@ -81,6 +81,22 @@ TEST(Parallel, CopiesEveryElementIntoAVectorOfAnySize) {
   }
 }
 
+TEST(Parallel, AssignsTheValueToEveryElementOfAVectorOfAnySize) {
+  const Vec3 value(1.5, -2.0, 0.25);
+  for (int threads : {1, 3})
+    for (const size_t n : {size_t(0), size_t(1), size_t(50000)}) {
+      ThreadCount count(threads);
+      std::vector<Vec3> fresh, shorter(n / 2, Vec3::Constant(7.0)), longer(n + 5);
+      parallel_assign(fresh, n, value);
+      parallel_assign(shorter, n, value);
+      parallel_assign(longer, n, value);
+      const std::vector<Vec3> want(n, value);
+      EXPECT_TRUE(same_bits(fresh, want)) << n;
+      EXPECT_TRUE(same_bits(shorter, want)) << n;
+      EXPECT_TRUE(same_bits(longer, want)) << n;
+    }
+}
+
 TEST(Parallel, SolvesGiveIdenticalVerticesOnOneTwoThreeAndEightThreads) {
   // 19,200 quads: eight sweep parts on the finest level, gradient and energy in chunks.
   const test::BentCylinder c = test::bent_cylinder(96, 200, 120.0);

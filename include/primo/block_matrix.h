@@ -161,10 +161,10 @@ struct RigidDiagonalBlock {
 // 192,000 bodies a cycle took 45-53 ms (median 47.6 of six alternating runs) instead of
 // 50-53 (52.1), the set-up that writes them 36-42 ms instead of 47-52.
 // Applied as v = S^-1 (t - a x f / w), u = (f + a x v) / w for the right side (f, t).
-struct RigidInverse {
-  float inverse_weight = 0.0f;
-  Eigen::Vector3f arm = Eigen::Vector3f::Zero();
-  std::array<float, 6> schur_inverse{};  // xx, xy, xz, yy, yz, zz
+struct RigidInverse {  // uninitialized until `of` writes it, as DiagonalBlock
+  float inverse_weight;
+  Eigen::Vector3f arm;
+  std::array<float, 6> schur_inverse;  // xx, xy, xz, yy, yz, zz
 
   // The smoothers' inverse of `block`; false when the block is not positive definite.
   static bool of(const RigidDiagonalBlock& block, RigidInverse& out);
@@ -188,10 +188,14 @@ struct RigidInverse {
 // multigrid's set-up reads it: at 192,000 bodies they took 35-44 ms (median 38.1 of five
 // alternating runs) instead of 35-50 (42.9), and 31-32 ms instead of 34-43 (40.1); products
 // with the Hessian the same (its double arithmetic costs what the smaller reads save).
+// Uninitialized when default-constructed, as Eigen's matrices are: a matrix's millions are
+// zeroed on every core (set_structure).
 struct DiagonalBlock {
-  float weight = 0.0f;
-  Eigen::Vector3f arm = Eigen::Vector3f::Zero();
-  std::array<float, 6> turn{};  // xx, xy, xz, yy, yz, zz
+  float weight;
+  Eigen::Vector3f arm;
+  std::array<float, 6> turn;  // xx, xy, xz, yy, yz, zz
+
+  static DiagonalBlock Zero() { return {0.0f, Eigen::Vector3f::Zero(), {}}; }
 
   // `block` in single precision, its turn symmetrized.
   static DiagonalBlock of(const RigidDiagonalBlock& block);

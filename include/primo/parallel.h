@@ -60,6 +60,16 @@ void parallel_copy(const std::vector<T>& from, std::vector<T>& to) {
   });
 }
 
+// v = n copies of `value`, written in parallel: the first touch of fresh memory is a page
+// fault per 4 KB, and the solver's work vectors at 240k faces are tens of MB each (types that
+// initialize themselves are still constructed on the calling thread by the resize).
+template <class T>
+void parallel_assign(std::vector<T>& v, size_t n, const T& value) {
+  v.resize(n);
+  parallel_chunks(n, kParallelGrain, [&](size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i) v[i] = value;
+  });
+}
 // combine(...combine(combine(zero, part(chunk 0)), part(chunk 1))..., part(chunk K-1)): the
 // chunks' results folded in chunk order, so the result does not depend on the thread count.
 template <class T, class Part, class Combine>

@@ -218,6 +218,21 @@ RigidMultigrid::RigidMultigrid(const RigidSystem& fine,
     for (int& row : row_of_body) row = levels_.back()->parent[size_t(row)];
     levels_.push_back(std::move(level));
   }
+  // The work vectors of set_matrix and the cycles, made now on every core: made by the first
+  // step instead, their first touch was a step's page faults (about 35 MB at 240k faces).
+  for (size_t l = 0; l < levels_.size(); ++l) {
+    Level& level = *levels_[l];
+    const size_t rows = level.position.size();
+    parallel_assign(level.x, rows, Vec6f::Zero().eval());
+    parallel_assign(level.rhs, rows, Vec6f::Zero().eval());
+    if (l + 1 == levels_.size()) continue;
+    parallel_assign(level.residual, rows, Vec6f::Zero().eval());
+    parallel_assign(level.arm, rows, Vec3::Zero().eval());
+    parallel_assign(level.arm_f, rows, Eigen::Vector3f::Zero().eval());
+    parallel_assign(level.diag_inverse, rows, RigidInverse{0.0f, Eigen::Vector3f::Zero(), {}});
+    if (l > 0 && options_.coarse_visits > 1)  // the K-cycle's levels (cycle())
+      for (BlockVectorF& v : level.krylov) parallel_assign(v, rows, Vec6f::Zero().eval());
+  }
   // The coarsest matrix's pattern, analysed once.
   coarsest_ = std::make_unique<Coarsest>();
   const Level& last = *levels_.back();
