@@ -460,6 +460,26 @@ void RigidMultigrid::cycle(size_t l, const BlockVectorF& rhs, BlockVectorF& x) {
 }
 
 namespace {
+// Dot products of single-precision vectors (v[0] . v[1], v[2] . v[3], ...) in one pass over
+// them, each summed as dot() sums it (the same chunks, rows in order): the same bits as K
+// calls of dot(). The K-cycle took seven passes for its five coefficients and two norms.
+template <size_t K>
+std::array<double, K> dots(const std::array<const BlockVectorF*, 2 * K>& v) {
+  using Sums = std::array<double, K>;
+  return parallel_reduce(
+      v[0]->size(), kParallelGrain, Sums{},
+      [&](size_t begin, size_t end) {
+        Sums sums{};
+        for (size_t b = begin; b < end; ++b)
+          for (size_t k = 0; k < K; ++k) sums[k] += double((*v[2 * k])[b].dot((*v[2 * k + 1])[b]));
+        return sums;
+      },
+      [](Sums a, const Sums& b) {
+        for (size_t k = 0; k < K; ++k) a[k] += b[k];
+        return a;
+      });
+}
+
 void scale_into(double factor, const BlockVectorF& v, BlockVectorF& x) {
   parallel_chunks(v.size(), kParallelGrain, [&](size_t begin, size_t end) {
     for (size_t b = begin; b < end; ++b) x[b] = factor * v[b];
@@ -483,24 +503,39 @@ void RigidMultigrid::krylov_correction(size_t l) {
   BlockVectorF& w2 = level.krylov[4];
   cycle(l, rhs, v1);
   a.multiply(v1, w1);
-  const double rho1 = dot(v1, w1), alpha1 = dot(v1, rhs);
+  const std::array<double, 2> first = dots<2>({&v1, &w1, &v1, &rhs});
+  const double rho1 = first[0], alpha1 = first[1];
   BlockVectorF& x = level.x;
   x.resize(n);
   if (!(rho1 > 0.0)) {
     parallel_copy(v1, x);
     return;
   }
+  // r2 = rhs - (alpha1 / rho1) w1 and the two norms in one pass (as dots<2> sums them).
   r2.resize(n);
-  parallel_chunks(n, kParallelGrain, [&](size_t begin, size_t end) {
-    for (size_t b = begin; b < end; ++b) r2[b] = rhs[b] - (alpha1 / rho1) * w1[b];
-  });
-  if (dot(r2, r2) <= 0.0625 * dot(rhs, rhs)) {
+  using Norms = std::array<double, 2>;
+  const Norms norms = parallel_reduce(
+      n, kParallelGrain, Norms{},
+      [&](size_t begin, size_t end) {
+        Norms sums{};
+        for (size_t b = begin; b < end; ++b) {
+          r2[b] = rhs[b] - (alpha1 / rho1) * w1[b];
+          sums[0] += double(r2[b].dot(r2[b]));
+          sums[1] += double(rhs[b].dot(rhs[b]));
+        }
+        return sums;
+      },
+      [](Norms a, const Norms& b) {
+        return Norms{a[0] + b[0], a[1] + b[1]};
+      });
+  if (norms[0] <= 0.0625 * norms[1]) {
     scale_into(alpha1 / rho1, v1, x);
     return;
   }
   cycle(l, r2, v2);
   a.multiply(v2, w2);
-  const double gamma = dot(v2, w1), beta = dot(v2, w2), alpha2 = dot(v2, r2);
+  const std::array<double, 3> second = dots<3>({&v2, &w1, &v2, &w2, &v2, &r2});
+  const double gamma = second[0], beta = second[1], alpha2 = second[2];
   const double rho2 = beta - gamma * gamma / rho1;
   if (!(rho2 > 0.0)) {
     scale_into(alpha1 / rho1, v1, x);
