@@ -188,8 +188,8 @@ struct RigidInverse {  // uninitialized until `of` writes it, as DiagonalBlock
 // multigrid's set-up reads it: at 192,000 bodies they took 35-44 ms (median 38.1 of five
 // alternating runs) instead of 35-50 (42.9), and 31-32 ms instead of 34-43 (40.1); products
 // with the Hessian the same (its double arithmetic costs what the smaller reads save).
-// Uninitialized when default-constructed, as Eigen's matrices are: a matrix's millions are
-// zeroed on every core (set_structure).
+// Uninitialized when default-constructed, as Eigen's matrices are, so that a matrix's blocks
+// are zeroed on every core (set_structure) instead of one by one as a vector constructs them.
 struct DiagonalBlock {
   float weight;
   Eigen::Vector3f arm;

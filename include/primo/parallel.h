@@ -70,6 +70,7 @@ void parallel_assign(std::vector<T>& v, size_t n, const T& value) {
     for (size_t i = begin; i < end; ++i) v[i] = value;
   });
 }
+
 // combine(...combine(combine(zero, part(chunk 0)), part(chunk 1))..., part(chunk K-1)): the
 // chunks' results folded in chunk order, so the result does not depend on the thread count.
 template <class T, class Part, class Combine>

@@ -230,7 +230,7 @@ RigidMultigrid::RigidMultigrid(const RigidSystem& fine,
     parallel_assign(level.arm, rows, Vec3::Zero().eval());
     parallel_assign(level.arm_f, rows, Eigen::Vector3f::Zero().eval());
     parallel_assign(level.diag_inverse, rows, RigidInverse{0.0f, Eigen::Vector3f::Zero(), {}});
-    if (l > 0 && options_.coarse_visits > 1)  // the K-cycle's levels (cycle())
+    if (l > 0 && options_.coarse_visits > 1)  // the levels krylov_correction solves on
       for (BlockVectorF& v : level.krylov) parallel_assign(v, rows, Vec6f::Zero().eval());
   }
   // The coarsest matrix's pattern, analysed once.
