@@ -154,6 +154,22 @@ struct RigidDiagonalBlock {
   Mat6 dense() const;
 };
 
+// A symmetric 3x3 matrix in single precision by its six numbers (xx, xy, xz, yy, yz, zz): a
+// diagonal block's turn and the inverse of its Schur complement.
+struct Symmetric3f : std::array<float, 6> {
+  // `m` with each pair of off-diagonal entries averaged.
+  static Symmetric3f of(const Mat3& m);
+  Mat3 widened() const;
+  // The product in the vector's precision.
+  template <class T>
+  Eigen::Matrix<T, 3, 1> times(const Eigen::Matrix<T, 3, 1>& w) const {
+    const Symmetric3f& s = *this;
+    return {T(s[0]) * w[0] + T(s[1]) * w[1] + T(s[2]) * w[2],
+            T(s[1]) * w[0] + T(s[3]) * w[1] + T(s[4]) * w[2],
+            T(s[2]) * w[0] + T(s[4]) * w[1] + T(s[5]) * w[2]};
+  }
+};
+
 // The inverse of a RigidDiagonalBlock [[w I, -[a]x], [[a]x, T]] kept as the numbers it is made
 // of: 1/w, a and the inverse of the Schur complement S = T + [a]x[a]x / w (symmetric, six
 // numbers), 40 bytes where the dense 6x6 inverse in single precision takes 144. The
@@ -164,17 +180,14 @@ struct RigidDiagonalBlock {
 struct RigidInverse {  // uninitialized until `of` writes it, as DiagonalBlock
   float inverse_weight;
   Eigen::Vector3f arm;
-  std::array<float, 6> schur_inverse;  // xx, xy, xz, yy, yz, zz
+  Symmetric3f schur_inverse;
 
   // The smoothers' inverse of `block`; false when the block is not positive definite.
   static bool of(const RigidDiagonalBlock& block, RigidInverse& out);
   Vec6f times(const Vec6f& rhs) const {
     const Eigen::Vector3f f = rhs.head<3>();
     const Eigen::Vector3f t = rhs.tail<3>() - inverse_weight * arm.cross(f);
-    const std::array<float, 6>& s = schur_inverse;
-    const Eigen::Vector3f v(s[0] * t[0] + s[1] * t[1] + s[2] * t[2],
-                            s[1] * t[0] + s[3] * t[1] + s[4] * t[2],
-                            s[2] * t[0] + s[4] * t[1] + s[5] * t[2]);
+    const Eigen::Vector3f v = schur_inverse.times(t);
     Vec6f out;
     out.head<3>() = inverse_weight * (f + arm.cross(v));
     out.tail<3>() = v;
@@ -193,7 +206,7 @@ struct RigidInverse {  // uninitialized until `of` writes it, as DiagonalBlock
 struct DiagonalBlock {
   float weight;
   Eigen::Vector3f arm;
-  std::array<float, 6> turn;  // xx, xy, xz, yy, yz, zz
+  Symmetric3f turn;
 
   static DiagonalBlock Zero() { return {0.0f, Eigen::Vector3f::Zero(), {}}; }
 
@@ -207,12 +220,9 @@ struct DiagonalBlock {
     using V3 = Eigen::Matrix<T, 3, 1>;
     const V3 v = x.template head<3>(), w = x.template tail<3>();
     const V3 a = arm.cast<T>();
-    const V3 turned(T(turn[0]) * w[0] + T(turn[1]) * w[1] + T(turn[2]) * w[2],
-                    T(turn[1]) * w[0] + T(turn[3]) * w[1] + T(turn[4]) * w[2],
-                    T(turn[2]) * w[0] + T(turn[4]) * w[1] + T(turn[5]) * w[2]);
     Eigen::Matrix<T, 6, 1> y;
     y.template head<3>() = T(weight) * v - a.cross(w);
-    y.template tail<3>() = a.cross(v) + turned;
+    y.template tail<3>() = a.cross(v) + turn.times(w);
     return y;
   }
 };

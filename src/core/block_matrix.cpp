@@ -168,18 +168,33 @@ bool RigidInverse::of(const RigidDiagonalBlock& block, RigidInverse& out) {
   if (!spd_inverse3(schur, s_inverse)) return false;
   out.inverse_weight = float(iw);
   out.arm = block.arm.cast<float>();
-  out.schur_inverse = {float(s_inverse(0, 0)), float(s_inverse(0, 1)), float(s_inverse(0, 2)),
-                       float(s_inverse(1, 1)), float(s_inverse(1, 2)), float(s_inverse(2, 2))};
+  out.schur_inverse = Symmetric3f::of(s_inverse);
   return true;
 }
 
+Symmetric3f Symmetric3f::of(const Mat3& m) {
+  Symmetric3f s;
+  s[0] = float(m(0, 0));
+  s[1] = float(0.5 * (m(0, 1) + m(1, 0)));
+  s[2] = float(0.5 * (m(0, 2) + m(2, 0)));
+  s[3] = float(m(1, 1));
+  s[4] = float(0.5 * (m(1, 2) + m(2, 1)));
+  s[5] = float(m(2, 2));
+  return s;
+}
+
+Mat3 Symmetric3f::widened() const {
+  const Symmetric3f& s = *this;
+  Mat3 m;
+  m << s[0], s[1], s[2], s[1], s[3], s[4], s[2], s[4], s[5];
+  return m;
+}
+
 DiagonalBlock DiagonalBlock::of(const RigidDiagonalBlock& block) {
-  const Mat3& t = block.turn;
   DiagonalBlock out;
   out.weight = float(block.weight);
   out.arm = block.arm.cast<float>();
-  out.turn = {float(t(0, 0)), float(0.5 * (t(0, 1) + t(1, 0))), float(0.5 * (t(0, 2) + t(2, 0))),
-              float(t(1, 1)), float(0.5 * (t(1, 2) + t(2, 1))), float(t(2, 2))};
+  out.turn = Symmetric3f::of(block.turn);
   return out;
 }
 
@@ -187,7 +202,7 @@ RigidDiagonalBlock DiagonalBlock::widened() const {
   RigidDiagonalBlock out;
   out.weight = double(weight);
   out.arm = arm.cast<double>();
-  out.turn << turn[0], turn[1], turn[2], turn[1], turn[3], turn[4], turn[2], turn[4], turn[5];
+  out.turn = turn.widened();
   return out;
 }
 

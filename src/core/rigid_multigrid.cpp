@@ -460,24 +460,32 @@ void RigidMultigrid::cycle(size_t l, const BlockVectorF& rhs, BlockVectorF& x) {
 }
 
 namespace {
-// Dot products of single-precision vectors (v[0] . v[1], v[2] . v[3], ...) in one pass over
-// them, each summed as dot() sums it (the same chunks, rows in order): the same bits as K
-// calls of dot(). The K-cycle took seven passes for its five coefficients and two norms.
-template <size_t K>
-std::array<double, K> dots(const std::array<const BlockVectorF*, 2 * K>& v) {
+// K sums over the rows of what row_terms(b, sums) adds to them for row b, each summed as dot()
+// sums (the same chunks, rows in order): several dot products in one pass over their vectors
+// with the same bits as one dot() each. The K-cycle took seven passes for its five
+// coefficients and two norms.
+template <size_t K, class RowTerms>
+std::array<double, K> row_sums(size_t n, RowTerms&& row_terms) {
   using Sums = std::array<double, K>;
   return parallel_reduce(
-      v[0]->size(), kParallelGrain, Sums{},
+      n, kParallelGrain, Sums{},
       [&](size_t begin, size_t end) {
         Sums sums{};
-        for (size_t b = begin; b < end; ++b)
-          for (size_t k = 0; k < K; ++k) sums[k] += double((*v[2 * k])[b].dot((*v[2 * k + 1])[b]));
+        for (size_t b = begin; b < end; ++b) row_terms(b, sums);
         return sums;
       },
       [](Sums a, const Sums& b) {
         for (size_t k = 0; k < K; ++k) a[k] += b[k];
         return a;
       });
+}
+
+// v[0] . v[1], v[2] . v[3], ... in one pass.
+template <size_t K>
+std::array<double, K> dots(const std::array<const BlockVectorF*, 2 * K>& v) {
+  return row_sums<K>(v[0]->size(), [&](size_t b, std::array<double, K>& sums) {
+    for (size_t k = 0; k < K; ++k) sums[k] += double((*v[2 * k])[b].dot((*v[2 * k + 1])[b]));
+  });
 }
 
 void scale_into(double factor, const BlockVectorF& v, BlockVectorF& x) {
@@ -511,23 +519,13 @@ void RigidMultigrid::krylov_correction(size_t l) {
     parallel_copy(v1, x);
     return;
   }
-  // r2 = rhs - (alpha1 / rho1) w1 and the two norms in one pass (as dots<2> sums them).
+  // r2 = rhs - (alpha1 / rho1) w1 and the two norms in one pass.
   r2.resize(n);
-  using Norms = std::array<double, 2>;
-  const Norms norms = parallel_reduce(
-      n, kParallelGrain, Norms{},
-      [&](size_t begin, size_t end) {
-        Norms sums{};
-        for (size_t b = begin; b < end; ++b) {
-          r2[b] = rhs[b] - (alpha1 / rho1) * w1[b];
-          sums[0] += double(r2[b].dot(r2[b]));
-          sums[1] += double(rhs[b].dot(rhs[b]));
-        }
-        return sums;
-      },
-      [](Norms a, const Norms& b) {
-        return Norms{a[0] + b[0], a[1] + b[1]};
-      });
+  const std::array<double, 2> norms = row_sums<2>(n, [&](size_t b, std::array<double, 2>& sums) {
+    r2[b] = rhs[b] - (alpha1 / rho1) * w1[b];
+    sums[0] += double(r2[b].dot(r2[b]));
+    sums[1] += double(rhs[b].dot(rhs[b]));
+  });
   if (norms[0] <= 0.0625 * norms[1]) {
     scale_into(alpha1 / rho1, v1, x);
     return;
