@@ -95,10 +95,13 @@ struct HierarchicalOptions {
   // method take 9 to 15; full solves took 0.19 instead of 0.28 s (elephant), 0.73 instead of
   // 0.89 s (armadillo), 3.8 instead of 5.7 s (koala) and about 5.5 instead of 9.5 s (240k
   // faces) (docs/performance.md). After the bench's 60-frame drags that cycle lowers the
-  // energy by 1e-5 to 1e-4 of it, after a jump or from rest by 0.1 to 0.6. 0: cycles there
-  // too. A step takes 0.4-0.9 s at 240k faces: the editor interrupts it when a newer request
-  // comes (SolveOptions::interrupt).
-  double newton_krylov_above = 1e-2;
+  // energy by 1e-5 to 3e-4 of it, after a jump or from rest by 0.1 to 0.6; after a drag that
+  // lagged the hand (15-30 frames, or an artist's fast 4-second pull at 240k faces) by 2e-3
+  // to 1e-2, and there the steps win too: with 1e-2 such a settle at 240k faces took 13
+  // cycles before its first step and 24 iterations (2.7 s), with 2e-3 it takes 10 (1.8 s)
+  // (docs/performance.md, part 18). 0: cycles there too. A step takes 0.1-0.3 s at 240k
+  // faces: the editor interrupts it when a newer request comes (SolveOptions::interrupt).
+  double newton_krylov_above = 2e-3;
   NewtonKrylovOptions newton_krylov;
 };
 
