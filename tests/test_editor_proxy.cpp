@@ -94,6 +94,21 @@ TEST(EditorProxy, FitsTheBudgetAndIndexesTheMesh) {
   expect_indexes_the_mesh(t, p);
 }
 
+TEST(EditorProxy, ABigMeshIsDecimatedInPartsToTheSameStandInOnAnyNumberOfThreads) {
+  // 48,000 triangles: cut into parts that are decimated side by side, then joined and
+  // decimated once more, their seams free. The parts depend on the mesh only.
+  const MeshTopology t = build_topology(make_cylinder(0.25, 2.0, 160, 150, FaceShape::Quads));
+  const ProxyTriangles one = decimate_triangles(t, 8000, nullptr, 1);
+  const ProxyTriangles three = decimate_triangles(t, 8000, nullptr, 3);
+  EXPECT_EQ(one.triangles, three.triangles);
+  EXPECT_EQ(one.triangle_face, three.triangle_face);
+  EXPECT_LE(one.triangle_face.size(), 8000u);
+  EXPECT_GT(one.triangle_face.size(), 6000u) << "not coarser than needed";
+  expect_indexes_the_mesh(t, one);
+  expect_facing_like_the_mesh(t, one, t.rest_points);
+  EXPECT_LT(worst_aspect_ratio(one, t.rest_points), 40.0) << "needles along the seams";
+}
+
 TEST(EditorProxy, ThinPartsStayClosedWithoutHolesOrFins) {
   // A bar 1/40 as wide as it is long, dense enough that any grid coarse enough to reach the
   // budget puts its opposite sides in the same cell: clustering tore it open.

@@ -29,14 +29,16 @@ struct ProxyTriangles {
 
 // Decimates until the proxy has at most about `max_triangles` triangles. Empty when the mesh
 // itself has no more than that. Triangles the decimater cannot take (a non-manifold fan) stay
-// as they are, with their corners kept, so nothing is left out.
+// as they are, with their corners kept, so nothing is left out. A big mesh is decimated in
+// spatial parts on `threads` threads (0: one per core), then joined and decimated once more
+// to the budget; the result is the same on any number of threads.
 // Returns early, empty, once `cancel` (if given) is set.
 ProxyTriangles decimate_triangles(const MeshTopology& topology, int max_triangles,
-                                  const std::atomic<bool>* cancel = nullptr);
+                                  const std::atomic<bool>* cancel = nullptr, int threads = 0);
 
-// The proxy built on a thread of its own: decimating a 100k-face mesh takes about two seconds,
-// and a mesh should open at once (it is drawn in full until its proxy is ready). Destroying
-// the build cancels it and waits only for the decimater's next check.
+// The proxy built off the window's thread: decimating a 100k-face mesh took about two seconds
+// on one core, and a mesh should open at once (it is drawn in full until its proxy is ready).
+// Destroying the build cancels it and waits only for the decimater's next check.
 class ProxyBuild {
  public:
   ProxyBuild(std::shared_ptr<const MeshTopology> topology, int max_triangles);
