@@ -31,10 +31,10 @@ using ProxyMesh = OpenMesh::TriMesh_ArrayKernelT<ProxyTraits>;
 constexpr float kMaxNormalDeviationDegrees = 45.0f;
 // Longest edge over height: no needles.
 constexpr float kMaxAspectRatio = 8.0f;
-// Meshes of at least twice this many triangles are decimated in kProxyParts parts at once,
-// each to kPartSlack times its share of the budget (decimate_triangles).
+// Meshes of at least twice this many triangles are decimated in 2^kProxyPartLevels parts at
+// once, each to kPartSlack times its share of the budget (decimate_triangles).
 constexpr size_t kTrianglesPerPart = 20000;
-constexpr int kProxyParts = 8;
+constexpr int kProxyPartLevels = 3;
 constexpr double kPartSlack = 1.25;
 
 class CancelObserver : public OpenMesh::Decimater::Observer {
@@ -46,6 +46,17 @@ class CancelObserver : public OpenMesh::Decimater::Observer {
  private:
   const std::atomic<bool>* cancel_;
 };
+
+void append_triangle(ProxyTriangles& to, const unsigned* corners, int face) {
+  to.triangles.insert(to.triangles.end(), corners, corners + 3);
+  to.triangle_face.push_back(face);
+}
+
+void append(ProxyTriangles& to, const ProxyTriangles& from) {
+  to.triangles.insert(to.triangles.end(), from.triangles.begin(), from.triangles.end());
+  to.triangle_face.insert(to.triangle_face.end(), from.triangle_face.begin(),
+                          from.triangle_face.end());
+}
 
 // Decimates `input` (triangles indexing `points`) to about `budget` triangles, its
 // boundary (an open rim, or a seam where the caller cut the mesh into parts) kept as it is.
@@ -74,8 +85,7 @@ ProxyTriangles decimate_part(const std::vector<Vec3>& points, const ProxyTriangl
       source_triangle.push_back(int(i));
       continue;
     }
-    kept_as_is.triangles.insert(kept_as_is.triangles.end(), c, c + 3);
-    kept_as_is.triangle_face.push_back(input.triangle_face[i]);
+    append_triangle(kept_as_is, c, input.triangle_face[i]);
   }
   // Corners of triangles left out of the decimation, and boundary loops, stay where they are.
   for (const unsigned v : kept_as_is.triangles)
@@ -109,16 +119,13 @@ ProxyTriangles decimate_part(const std::vector<Vec3>& points, const ProxyTriangl
     for (const auto v : f.vertices()) proxy.triangles.push_back(point_of[size_t(v.idx())]);
     proxy.triangle_face.push_back(input.triangle_face[size_t(source_triangle[size_t(f.idx())])]);
   }
-  proxy.triangles.insert(proxy.triangles.end(), kept_as_is.triangles.begin(),
-                         kept_as_is.triangles.end());
-  proxy.triangle_face.insert(proxy.triangle_face.end(), kept_as_is.triangle_face.begin(),
-                             kept_as_is.triangle_face.end());
+  append(proxy, kept_as_is);
   return proxy;
 }
 
-// The triangles cut into `parts` (a power of two) by recursive bisection of their centroids
-// (the solver's body partition: median cuts along the longest axis, fixed by the mesh).
-std::vector<ProxyTriangles> spatial_parts(const MeshTopology& t, int parts) {
+// The triangles cut into 2^levels parts by recursive bisection of their centroids (the
+// solver's body partition: median cuts along the longest axis, fixed by the mesh).
+std::vector<ProxyTriangles> spatial_parts(const MeshTopology& t, int levels) {
   const size_t n = t.triangle_face.size();
   std::vector<int> all(n);
   std::iota(all.begin(), all.end(), 0);
@@ -127,17 +134,13 @@ std::vector<ProxyTriangles> spatial_parts(const MeshTopology& t, int parts) {
     centroid[i] = (t.rest_points[t.triangles[3 * i]] + t.rest_points[t.triangles[3 * i + 1]] +
                    t.rest_points[t.triangles[3 * i + 2]]) /
                   3.0;
-  int levels = 0;
-  while ((1 << levels) < parts) ++levels;
-  const BodyPartition partition = partition_bodies(std::move(all), centroid, {},
-                                                   (n + size_t(parts) - 1) / size_t(parts), levels);
+  const size_t parts = size_t(1) << levels;
+  const BodyPartition partition =
+      partition_bodies(std::move(all), centroid, {}, (n + parts - 1) / parts, levels);
   std::vector<ProxyTriangles> out(partition.parts.size());
   for (size_t p = 0; p < out.size(); ++p)
-    for (const int i : partition.parts[p]) {
-      const unsigned* c = &t.triangles[3 * size_t(i)];
-      out[p].triangles.insert(out[p].triangles.end(), c, c + 3);
-      out[p].triangle_face.push_back(t.triangle_face[size_t(i)]);
-    }
+    for (const int i : partition.parts[p])
+      append_triangle(out[p], &t.triangles[3 * size_t(i)], t.triangle_face[size_t(i)]);
   return out;
 }
 
@@ -153,10 +156,9 @@ ProxyTriangles decimate_triangles(const MeshTopology& t, int max_triangles,
   // decimated once more to the budget, seams free: the parts go to a little above their share
   // so that the last pass has their seams' extra triangles and some more to take. The parts
   // are fixed by the mesh, not by the cores, so the stand-in is the same on any machine.
-  const int parts = n >= kTrianglesPerPart * 2 ? kProxyParts : 1;
-  if (parts == 1)
+  if (n < kTrianglesPerPart * 2)
     return decimate_part(t.rest_points, {t.triangles, t.triangle_face}, budget, cancel);
-  std::vector<ProxyTriangles> pieces = spatial_parts(t, parts);
+  std::vector<ProxyTriangles> pieces = spatial_parts(t, kProxyPartLevels);
   // On threads of their own, not the solver's pool: a part takes a second or so, and a
   // solver thread waiting in that pool could pick one up in the middle of a drag.
   std::atomic<size_t> next{0};
@@ -175,7 +177,7 @@ ProxyTriangles decimate_triangles(const MeshTopology& t, int max_triangles,
     }
   };
   const unsigned cores = threads > 0 ? unsigned(threads) : std::thread::hardware_concurrency();
-  const unsigned workers = std::clamp(cores, 1u, unsigned(parts));
+  const unsigned workers = std::clamp(cores, 1u, unsigned(pieces.size()));
   std::vector<std::thread> helpers;
   for (unsigned k = 1; k < workers; ++k) helpers.emplace_back(work);
   work();
@@ -183,11 +185,7 @@ ProxyTriangles decimate_triangles(const MeshTopology& t, int max_triangles,
   if (failure) std::rethrow_exception(failure);
   if (cancel && cancel->load(std::memory_order_relaxed)) return {};
   ProxyTriangles joined;
-  for (const ProxyTriangles& piece : pieces) {
-    joined.triangles.insert(joined.triangles.end(), piece.triangles.begin(), piece.triangles.end());
-    joined.triangle_face.insert(joined.triangle_face.end(), piece.triangle_face.begin(),
-                                piece.triangle_face.end());
-  }
+  for (const ProxyTriangles& piece : pieces) append(joined, piece);
   return decimate_part(t.rest_points, joined, budget, cancel);
 }
 
