@@ -5,6 +5,8 @@
 #include <chrono>
 #include <cmath>
 #include <map>
+#include <memory>
+#include <thread>
 #include <utility>
 
 #include "primo/mesh_generators.h"
@@ -107,6 +109,26 @@ TEST(EditorProxy, ABigMeshIsDecimatedInPartsToTheSameStandInOnAnyNumberOfThreads
   expect_indexes_the_mesh(t, one);
   expect_facing_like_the_mesh(t, one, t.rest_points);
   EXPECT_LT(worst_aspect_ratio(one, t.rest_points), 40.0) << "needles along the seams";
+}
+
+TEST(EditorProxy, APausedBuildWaitsAndThenGivesTheSameStandIn) {
+  // The window pauses the build while the solver settles and nothing moves; it starts paused.
+  auto t = std::make_shared<const MeshTopology>(
+      build_topology(make_cylinder(0.25, 2.0, 160, 150, FaceShape::Quads)));
+  const ProxyTriangles direct = decimate_triangles(*t, 8000);
+  {
+    ProxyBuild paused(t, 8000);
+    // Several times what the whole decimation takes unpaused on this mesh.
+    std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+    EXPECT_EQ(paused.ready(), nullptr) << "a paused build went on";
+  }  // destroyed while paused: cancelled, not waited for
+  ProxyBuild build(t, 8000);
+  build.set_paused(false);
+  const ProxyTriangles& p = build.wait();
+  EXPECT_EQ(p.triangles, direct.triangles);
+  EXPECT_EQ(p.triangle_face, direct.triangle_face);
+  ProxyBuild waited(t, 8000);  // wait() unpauses: a screenshot run must not hang on it
+  EXPECT_EQ(waited.wait().triangles, direct.triangles);
 }
 
 TEST(EditorProxy, ThinPartsStayClosedWithoutHolesOrFins) {

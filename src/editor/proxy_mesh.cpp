@@ -6,6 +6,7 @@
 #include <OpenMesh/Tools/Decimater/ModNormalFlippingT.hh>
 #include <OpenMesh/Tools/Decimater/ModQuadricT.hh>
 #include <algorithm>
+#include <chrono>
 #include <exception>
 #include <mutex>
 #include <numeric>
@@ -37,14 +38,29 @@ constexpr size_t kTrianglesPerPart = 20000;
 constexpr int kProxyPartLevels = 3;
 constexpr double kPartSlack = 1.25;
 
-class CancelObserver : public OpenMesh::Decimater::Observer {
+bool cancelled(const DecimationSignals* signals) {
+  return signals && signals->cancel.load(std::memory_order_relaxed);
+}
+
+// Returns at once unless paused; then when unpaused or cancelled.
+void wait_while_paused(const DecimationSignals* signals) {
+  constexpr auto kPausePoll = std::chrono::milliseconds(20);
+  while (signals && signals->paused.load(std::memory_order_relaxed) && !cancelled(signals))
+    std::this_thread::sleep_for(kPausePoll);
+}
+
+// OpenMesh's decimater asks its observer every kCheckCollapses collapses whether to stop; a
+// paused build waits there (the collapses made so far stay, so the result is the same).
+class SignalObserver : public OpenMesh::Decimater::Observer {
  public:
-  explicit CancelObserver(const std::atomic<bool>* cancel) : Observer(500), cancel_(cancel) {}
-  void notify(size_t) override {}
-  bool abort() const override { return cancel_ && cancel_->load(std::memory_order_relaxed); }
+  static constexpr size_t kCheckCollapses = 500;
+  explicit SignalObserver(const DecimationSignals* signals)
+      : Observer(kCheckCollapses), signals_(signals) {}
+  void notify(size_t) override { wait_while_paused(signals_); }
+  bool abort() const override { return cancelled(signals_); }
 
  private:
-  const std::atomic<bool>* cancel_;
+  const DecimationSignals* signals_;
 };
 
 void append_triangle(ProxyTriangles& to, const unsigned* corners, int face) {
@@ -61,8 +77,9 @@ void append(ProxyTriangles& to, const ProxyTriangles& from) {
 // Decimates `input` (triangles indexing `points`) to about `budget` triangles, its
 // boundary (an open rim, or a seam where the caller cut the mesh into parts) kept as it is.
 ProxyTriangles decimate_part(const std::vector<Vec3>& points, const ProxyTriangles& input,
-                             size_t budget, const std::atomic<bool>* cancel) {
-  CancelObserver observer(cancel);
+                             size_t budget, const DecimationSignals* signals) {
+  wait_while_paused(signals);
+  SignalObserver observer(signals);
   ProxyMesh mesh;
   std::vector<int> local(points.size(), -1);  // the mesh's vertex of each point used
   std::vector<unsigned> point_of;
@@ -147,7 +164,7 @@ std::vector<ProxyTriangles> spatial_parts(const MeshTopology& t, int levels) {
 }  // namespace
 
 ProxyTriangles decimate_triangles(const MeshTopology& t, int max_triangles,
-                                  const std::atomic<bool>* cancel, int threads) {
+                                  const DecimationSignals* signals, int threads) {
   const size_t n = t.triangle_face.size(), budget = size_t(std::max(1, max_triangles));
   if (n <= budget) return {};
   // OpenMesh's decimater is serial (5.5-5.9 s for 238,656 triangles, 2.0 s for the koala's
@@ -156,8 +173,9 @@ ProxyTriangles decimate_triangles(const MeshTopology& t, int max_triangles,
   // decimated once more to the budget, seams free: the parts go to a little above their share
   // so that the last pass has their seams' extra triangles and some more to take. The parts
   // are fixed by the mesh, not by the cores, so the stand-in is the same on any machine.
+  wait_while_paused(signals);
   if (n < kTrianglesPerPart * 2)
-    return decimate_part(t.rest_points, {t.triangles, t.triangle_face}, budget, cancel);
+    return decimate_part(t.rest_points, {t.triangles, t.triangle_face}, budget, signals);
   std::vector<ProxyTriangles> pieces = spatial_parts(t, kProxyPartLevels);
   // On threads of their own, not the solver's pool: a part takes a second or so, and a
   // solver thread waiting in that pool could pick one up in the middle of a drag.
@@ -169,7 +187,7 @@ ProxyTriangles decimate_triangles(const MeshTopology& t, int max_triangles,
       for (size_t p = next++; p < pieces.size(); p = next++) {
         const double share =
             kPartSlack * double(budget) * double(pieces[p].triangle_face.size()) / double(n);
-        pieces[p] = decimate_part(t.rest_points, pieces[p], size_t(share), cancel);
+        pieces[p] = decimate_part(t.rest_points, pieces[p], size_t(share), signals);
       }
     } catch (...) {
       std::lock_guard<std::mutex> lock(failure_mutex);
@@ -183,10 +201,10 @@ ProxyTriangles decimate_triangles(const MeshTopology& t, int max_triangles,
   work();
   for (std::thread& h : helpers) h.join();
   if (failure) std::rethrow_exception(failure);
-  if (cancel && cancel->load(std::memory_order_relaxed)) return {};
+  if (cancelled(signals)) return {};
   ProxyTriangles joined;
   for (const ProxyTriangles& piece : pieces) append(joined, piece);
-  return decimate_part(t.rest_points, joined, budget, cancel);
+  return decimate_part(t.rest_points, joined, budget, signals);
 }
 
 ProxyBuild::ProxyBuild(std::shared_ptr<const MeshTopology> topology, int max_triangles) {
@@ -194,13 +212,14 @@ ProxyBuild::ProxyBuild(std::shared_ptr<const MeshTopology> topology, int max_tri
     result_.emplace();
     return;
   }
+  signals_.paused = true;
   future_ = std::async(std::launch::async, [this, topology, max_triangles] {
-    return decimate_triangles(*topology, max_triangles, &cancel_);
+    return decimate_triangles(*topology, max_triangles, &signals_);
   });
 }
 
 ProxyBuild::~ProxyBuild() {
-  cancel_ = true;
+  signals_.cancel = true;
   if (future_.valid()) future_.wait();
 }
 
@@ -212,8 +231,13 @@ const ProxyTriangles* ProxyBuild::ready() {
 }
 
 const ProxyTriangles& ProxyBuild::wait() {
+  set_paused(false);
   if (!result_) result_ = future_.get();
   return *result_;
+}
+
+void ProxyBuild::set_paused(bool paused) {
+  signals_.paused.store(paused, std::memory_order_relaxed);
 }
 
 }  // namespace primo::editor

@@ -27,18 +27,28 @@ struct ProxyTriangles {
   bool empty() const { return triangle_face.empty(); }
 };
 
+// What the window tells a decimation while it runs, read at least every few hundred
+// collapses.
+struct DecimationSignals {
+  std::atomic<bool> cancel{false};  // stop: the result is not wanted any more
+  std::atomic<bool> paused{false};  // wait: the cores are needed elsewhere for now
+};
+
 // Decimates until the proxy has at most about `max_triangles` triangles. Empty when the mesh
 // itself has no more than that. Triangles the decimater cannot take (a non-manifold fan) stay
 // as they are, with their corners kept, so nothing is left out. A big mesh is decimated in
 // spatial parts on `threads` threads (0: one per core), then joined and decimated once more
-// to the budget; the result is the same on any number of threads.
-// Returns early, empty, once `cancel` (if given) is set.
+// to the budget; the result is the same on any number of threads, paused or not.
+// Returns early, empty, once `signals` (if given) says cancel.
 ProxyTriangles decimate_triangles(const MeshTopology& topology, int max_triangles,
-                                  const std::atomic<bool>* cancel = nullptr, int threads = 0);
+                                  const DecimationSignals* signals = nullptr, int threads = 0);
 
 // The proxy built off the window's thread: decimating a 100k-face mesh took about two seconds
 // on one core, and a mesh should open at once (it is drawn in full until its proxy is ready).
 // Destroying the build cancels it and waits only for the decimater's next check.
+// The window pauses it while the solver settles with nobody interacting: the stand-in is
+// drawn only during gestures and camera moves, and on two cores its decimation beside a
+// 240k-face scenario's first solve made the opened pose appear 2.3 s later.
 class ProxyBuild {
  public:
   ProxyBuild(std::shared_ptr<const MeshTopology> topology, int max_triangles);
@@ -49,11 +59,15 @@ class ProxyBuild {
   // The finished proxy (empty for small meshes), or null while it is being built.
   // For one thread at a time (the UI's).
   const ProxyTriangles* ready();
-  // Blocks until the proxy is built (tests, screenshots).
+  // Blocks until the proxy is built (tests, screenshots); unpauses it first.
   const ProxyTriangles& wait();
+  // Holds the decimation at its next check until unpaused (the same result either way). A
+  // build starts paused: a document opens with its first solve ahead, and the window knows
+  // from its next frame on whether the cores are free.
+  void set_paused(bool paused);
 
  private:
-  std::atomic<bool> cancel_{false};
+  DecimationSignals signals_;
   std::future<ProxyTriangles> future_;
   std::optional<ProxyTriangles> result_;
 };

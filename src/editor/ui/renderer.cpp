@@ -211,7 +211,8 @@ void MeshRenderer::draw(const DisplaySettings& display, int x, int y, int width,
   const auto now = std::chrono::steady_clock::now();
   if (key.matrix != last_matrix_ || interactive_) last_motion_ = now;
   last_matrix_ = key.matrix;
-  key.proxy = proxy_count_ > 0 && now - last_motion_ < std::chrono::milliseconds(300);
+  in_motion_ = now - last_motion_ < std::chrono::milliseconds(300);
+  key.proxy = proxy_count_ > 0 && in_motion_;
   key.geometry = geometry_version_;
   key.colors = colors_version_;
   key.smooth = display.smooth;

@@ -52,6 +52,8 @@ class MeshRenderer : public Picker {
   bool drew_proxy() const { return drew_proxy_; }
   // A gesture is under way (drag, stroke, orbit): big meshes stay on the proxy until it ends.
   void set_interactive(bool interactive) { interactive_ = interactive; }
+  // The camera moved or a gesture was under way at the last draw, or a moment before it.
+  bool in_motion() const { return in_motion_; }
 
   PickImage read(int x0, int y0, int width, int height) override;
   // Small meshes always; big ones (with a proxy) while the pick pass is current.
@@ -98,7 +100,7 @@ class MeshRenderer : public Picker {
   SceneKey drawn_;
   glm::dmat4 last_matrix_{0.0};
   std::chrono::steady_clock::time_point last_motion_;
-  bool drew_proxy_ = false, interactive_ = false;
+  bool drew_proxy_ = false, interactive_ = false, in_motion_ = false;
 
   GLuint pick_fbo_ = 0, pick_id_ = 0, pick_depth_ = 0, pick_z_ = 0;
   int pick_width_ = 0, pick_height_ = 0;
