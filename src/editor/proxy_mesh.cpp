@@ -12,6 +12,7 @@
 #include <numeric>
 #include <thread>
 
+#include "collapse_check.h"
 #include "primo/body_partition.h"
 
 namespace primo::editor {
@@ -25,7 +26,12 @@ struct ProxyTraits : OpenMesh::DefaultTraits {
   HalfedgeAttributes(OpenMesh::Attributes::PrevHalfedge);
   FaceAttributes(OpenMesh::Attributes::Status | OpenMesh::Attributes::Normal);
 };
-using ProxyMesh = OpenMesh::TriMesh_ArrayKernelT<ProxyTraits>;
+
+// The mesh the stand-in is decimated on: the decimater asks its mesh type whether a collapse
+// is allowed, and this one answers with the test compiled here (collapse_check.h says why).
+struct ProxyMesh : OpenMesh::TriMesh_ArrayKernelT<ProxyTraits> {
+  bool is_collapse_ok(HalfedgeHandle v0v1) const { return collapse_keeps_manifold(*this, v0v1); }
+};
 
 // A collapse may turn no triangle's normal by more than this: the stand-in keeps the
 // silhouette and never shows a triangle's back.
@@ -167,8 +173,8 @@ ProxyTriangles decimate_triangles(const MeshTopology& t, int max_triangles,
                                   const DecimationSignals* signals, int threads) {
   const size_t n = t.triangle_face.size(), budget = size_t(std::max(1, max_triangles));
   if (n <= budget) return {};
-  // OpenMesh's decimater is serial (5.5-5.9 s for 238,656 triangles, 2.0 s for the koala's
-  // 99,994; in parts on one thread 3.7-5.0 and 1.8 s, on two 2.4-2.5 and 0.9 s). Big meshes
+  // OpenMesh's decimater is serial (238,656 triangles: 1.6-1.7 s in parts on one thread,
+  // 0.8-0.9 s on two; the koala's 99,994 0.5 s on two). Big meshes
   // are cut into parts decimated side by side, their seams kept, then the joined parts are
   // decimated once more to the budget, seams free: the parts go to a little above their share
   // so that the last pass has their seams' extra triangles and some more to take. The parts

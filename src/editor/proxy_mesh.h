@@ -48,7 +48,7 @@ ProxyTriangles decimate_triangles(const MeshTopology& topology, int max_triangle
 // Destroying the build cancels it and waits only for the decimater's next check.
 // The window pauses it while the solver settles with nobody interacting: the stand-in is
 // drawn only during gestures and camera moves, and on two cores its decimation beside a
-// 240k-face scenario's first solve made the opened pose appear 2.3 s later.
+// 240k-face scenario's first solve made the opened pose appear about a second later.
 class ProxyBuild {
  public:
   ProxyBuild(std::shared_ptr<const MeshTopology> topology, int max_triangles);

@@ -455,7 +455,7 @@ void App::frame(double now, double dt) {
     shown.grid = false;
   renderer_->draw(shown, vx, fb_h - int(vp.y * scale) - vh, vw, vh);
   // The stand-in is drawn only in motion: its decimation waits while the solver settles and
-  // nothing moves (on two cores it made an opened 240k-face scenario settle 2.3 s later).
+  // nothing moves (on two cores it made an opened 240k-face scenario settle a second later).
   if (const Document* doc = editor_.document())
     doc->proxy->set_paused(editor_.solver_status().busy() && !renderer_->in_motion());
 
