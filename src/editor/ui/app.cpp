@@ -454,10 +454,11 @@ void App::frame(double now, double dt) {
       (screenshot_run_ && !script_ && !options_.screenshot_ui))
     shown.grid = false;
   renderer_->draw(shown, vx, fb_h - int(vp.y * scale) - vh, vw, vh);
-  // The stand-in is drawn only in motion: its decimation waits while the solver settles and
-  // nothing moves (on two cores it made an opened 240k-face scenario settle a second later).
+  // The stand-in is drawn only in motion: its decimation waits while the solver settles (or
+  // has a request it has not taken up yet) and nothing moves (on two cores it made an opened
+  // 240k-face scenario settle a second later).
   if (const Document* doc = editor_.document())
-    doc->proxy->set_paused(editor_.solver_status().busy() && !renderer_->in_motion());
+    doc->proxy->set_paused(!editor_.settled() && !renderer_->in_motion());
 
   // A --screenshot run: once the view shows a settled solve (two frames in a row).
   if (screenshot_run_ && !script_) {
