@@ -128,6 +128,64 @@ TEST(DeformerPath, APathResumedInSmallBudgetsEndsAtTheSameMinimum) {
   EXPECT_LT(max_distance(batched.vertex_positions(), whole.vertex_positions()), 1e-4 * c.diagonal);
 }
 
+TEST(DeformerPath, APathResumedOneIterationAtATimeIsTheSamePath) {
+  // The editor's first batches after an undo or redo are single iterations: a sub-step cut
+  // short goes on in the next call, with the path's prediction, as if in one call.
+  const BentCylinder c = bent_cylinder(16, 24, 150.0);
+  for (const SolveMethod method : {SolveMethod::Global, SolveMethod::Hierarchical}) {
+    SolveOptions o = converging(true);
+    o.method = method;
+    Deformer whole(c.mesh, PrismParameters{}, c.handles);
+    const SolveReport one_call = whole.solve(o);
+    ASSERT_TRUE(one_call.converged);
+    ASSERT_GT(one_call.path_steps, 1);
+
+    Deformer batched(c.mesh, PrismParameters{}, c.handles);
+    SolveOptions single = o;
+    single.max_iterations = 1;
+    single.path.max_iterations = 1;
+    int calls = 0, sub_steps = 0, path_iterations = 0, iterations = 0;
+    SolveReport r;
+    do {
+      r = batched.solve(single);
+      sub_steps += r.path_steps;
+      path_iterations += r.path_iterations;
+      iterations += r.iterations;
+      ++calls;
+    } while (!r.converged && calls < 1000);
+    ASSERT_TRUE(r.converged);
+    EXPECT_EQ(sub_steps, one_call.path_steps);
+    EXPECT_EQ(path_iterations, one_call.path_iterations) << "sub-steps cut short";
+    std::cout << "one call: " << one_call.path_iterations << " + " << one_call.iterations
+              << " iterations; single ones: " << path_iterations << " + " << iterations << "\n";
+    EXPECT_NEAR(r.energy, one_call.energy, 1e-6 * one_call.energy);
+    EXPECT_LT(max_distance(batched.vertex_positions(), whole.vertex_positions()),
+              1e-4 * c.diagonal);
+  }
+}
+
+TEST(DeformerPath, ARedoAfterAnUndoTakesNoMoreThanTheFirstSolve) {
+  // Undo and redo are jumps: the hierarchy's coarse factor from before the jump must not
+  // carry over into the new path's first cycles (a koala redo took 206 iterations instead of
+  // 20 with it).
+  const BentCylinder c = bent_cylinder(24, 48, 150.0);
+  SolveOptions o = converging(true);
+  o.method = SolveMethod::Hierarchical;
+  Deformer d(c.mesh, PrismParameters{}, c.handles);
+  const SolveReport first = d.solve(o);
+  ASSERT_TRUE(first.converged);
+  const RigidTransform pose = c.handles[1].transform;
+  d.set_handle_transform(1, RigidTransform::identity());
+  ASSERT_TRUE(d.solve(o).converged);  // the undo
+  d.set_handle_transform(1, pose);
+  const SolveReport redo = d.solve(o);
+  ASSERT_TRUE(redo.converged);
+  std::cout << "first solve " << first.path_iterations << " + " << first.iterations
+            << " iterations, redo " << redo.path_iterations << " + " << redo.iterations << "\n";
+  EXPECT_LE(redo.path_iterations + redo.iterations, first.path_iterations + first.iterations + 2);
+  EXPECT_NEAR(redo.energy, first.energy, 1e-6 * first.energy);
+}
+
 TEST(DeformerPath, DefaultMaterialPosesASubdividedModelAlike) {
   // A bent tube and the same tube Loop-subdivided once (4x the faces): with the default,
   // resolution-independent thickness both take the same shape; with the format's height in

@@ -221,6 +221,9 @@ class Deformer {
   void problem_changed();  // targets or state were set from outside
   // The last solve converged with this method and tolerance, and nothing changed since.
   bool settled_ = false;
+  // The state is the minimum the last solve converged to (no iteration since; a jump from it
+  // is an undo or a redo, not a drag's frame), and the hierarchy's coarse factor is of it.
+  bool solved_to_minimum_ = false, coarse_factor_of_state_ = false;
   SolveMethod settled_method_ = SolveMethod::Global;
   double settled_tolerance_ = 0.0;
   bool exact_newton_ = false;  // the next global iteration takes an exact-Hessian step
@@ -233,6 +236,17 @@ class Deformer {
   // path is interrupted.
   std::vector<RigidTransform> solved_transforms_;
   std::vector<Vec3> solved_offsets_;
+  // A path a call's budget cut short (follow_path): its targets, the sub-step it was in and
+  // the iterations that had, and its drag predictor's record, for the next call.
+  struct PathProgress {
+    std::vector<RigidTransform> end;
+    std::vector<Vec3> end_offsets;
+    std::vector<RigidTransform> step;
+    std::vector<Vec3> step_offsets;
+    int step_iterations = 0;
+    DragPredictor predictor;
+  };
+  PathProgress path_;
 };
 
 }  // namespace primo

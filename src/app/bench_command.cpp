@@ -90,6 +90,9 @@ Command register_bench(CLI::App& app) {
       ->check(finite_range(0.0, 2.0));
   drag->add_flag("--drag-only", drag_args->drag_only,
                  "Only the frames: no solving on to convergence, no full solve from rest");
+  drag->add_flag("--undo-redo", drag_args->undo_redo,
+                 "After the settle: the targets back to rest and to the pose again, solved in "
+                 "the editor's batches (an undo and a redo)");
   // Experiments with the hierarchical solver's settings (SolveOptions::hierarchical); the
   // defaults are the core's, which the editor and `primo deform` use.
   HierarchicalOptions& h = drag_args->hierarchical;

@@ -146,6 +146,13 @@ struct LagPoint {
   int iterations = 0;         // the reference solve's, from the previous checkpoint's shape
 };
 
+struct JumpRun {  // an undo or a redo
+  int calls = 0, iterations = 0, path_steps = 0, path_iterations = 0;
+  int newton_krylov_steps = 0;
+  double seconds = 0.0, energy = 0.0;
+  bool converged = false;
+};
+
 struct FullSolveRun {
   double setup_seconds = 0.0;
   double hierarchy_build_seconds = -1.0;  // hierarchical only, timed on a separate solver
@@ -232,6 +239,37 @@ void run_converge(Deformer& deformer, const SolveOptions& base, DragRun& run) {
   run.converge_profile.total = seconds_since(start);
   run.converge_profile.add_solver(before, SolverClock::read(deformer));
   run.memory_after_converge_mb = peak_memory_mb();
+}
+
+// The targets jump to `s` of the way (0: rest) and are solved as the editor's solver thread
+// solves an undo or a redo of a big mesh's drag: its first two batches come within 0.3 s of
+// the request and are one iteration each (one outlasts the 50 ms a drag's batch may take),
+// later ones four (solver_worker.cpp), to the editor's tolerance.
+JumpRun run_jump(Deformer& deformer, const DragCase& c, const SolveOptions& base, double s) {
+  constexpr int kFirstBatches = 2, kFirstBatch = 1, kSettleBatch = 4, kMaxCalls = 5000;
+  SolveOptions options = base;
+  options.tolerance = SolveOptions{}.tolerance;
+  options.path.enabled = true;
+  set_targets(deformer, c, s);
+  const SolverClock before = SolverClock::read(deformer);
+  JumpRun run;
+  SolveReport report;
+  do {
+    const int batch = run.calls < kFirstBatches ? kFirstBatch : kSettleBatch;
+    options.max_iterations = batch;
+    options.path.max_iterations = batch;
+    report = deformer.solve(options);
+    run.iterations += report.iterations;
+    run.path_steps += report.path_steps;
+    run.path_iterations += report.path_iterations;
+    run.seconds += report.seconds;
+    ++run.calls;
+  } while (!report.converged && run.calls < kMaxCalls);
+  run.energy = report.energy;
+  run.converged = report.converged;
+  run.newton_krylov_steps =
+      SolverClock::read(deformer).newton_krylov_steps - before.newton_krylov_steps;
+  return run;
 }
 
 // The reference: a second deformer dragged through the same targets, converged at every
@@ -490,6 +528,10 @@ int run_drag_bench(const DragBenchOptions& args) {
       // against the shapes their own targets converge to.
       const double diagonal = bounding_box_diagonal(c.mesh);
       const std::vector<Vec3> converged_shape = deformer->vertex_positions();
+      std::vector<std::pair<const char*, JumpRun>> jumps;
+      if (args.undo_redo)
+        for (const auto& [name, s] : {std::pair<const char*, double>{"undo", 0.0}, {"redo", 1.0}})
+          jumps.emplace_back(name, run_jump(*deformer, c, base, s));
       deformer.reset();
       const std::vector<Vec3>& last = drag.checkpoint_positions.back();
       double last_distance = 0.0;
@@ -518,6 +560,26 @@ int run_drag_bench(const DragBenchOptions& args) {
       std::printf("\n");
       out["lag"] = lag_json;
       out["lag_every"] = args.lag_every;
+      if (!jumps.empty()) {
+        std::printf("Undo and redo of the drag, solved in the editor's batches (tolerance %.0e)\n",
+                    SolveOptions{}.tolerance);
+        std::printf("  %6s %8s %8s %10s %10s %8s %14s\n", "", "seconds", "iters", "sub-steps",
+                    "their its", "N-K", "energy");
+        for (const auto& [name, j] : jumps) {
+          std::printf("  %6s %8.3f %8d %10d %10d %8d %14.6e%s\n", name, j.seconds, j.iterations,
+                      j.path_steps, j.path_iterations, j.newton_krylov_steps, j.energy,
+                      j.converged ? "" : "  (not converged)");
+          out[std::string(name)] = {{"seconds", j.seconds},
+                                    {"iterations", j.iterations},
+                                    {"path_steps", j.path_steps},
+                                    {"path_iterations", j.path_iterations},
+                                    {"newton_krylov_steps", j.newton_krylov_steps},
+                                    {"calls", j.calls},
+                                    {"energy", j.energy},
+                                    {"converged", j.converged}};
+        }
+        std::printf("\n");
+      }
     }
   }
 

@@ -31,6 +31,9 @@ struct DragBenchOptions {
   // solver converges to for that frame's targets: the lag the artist sees. 0: the last frame
   // only (its converged shape is the one the solve after the drag reaches).
   int lag_every = 10;
+  // After the settle: the targets back to rest and then to the pose again, each a jump
+  // solved as the editor's solver thread solves an undo and a redo.
+  bool undo_redo = false;
   double drag_prediction = SolveOptions{}.drag_prediction;  // SolveOptions::drag_prediction
   HierarchicalOptions hierarchical;  // the core's defaults unless the experiment flags say otherwise
 };
