@@ -166,7 +166,7 @@ TEST(DeformerPath, APathResumedOneIterationAtATimeIsTheSamePath) {
 
 TEST(DeformerPath, ARedoAfterAnUndoTakesNoMoreThanTheFirstSolve) {
   // Undo and redo are jumps: the hierarchy's coarse factor from before the jump must not
-  // carry over into the new path's first cycles (a koala redo took 206 iterations instead of
+  // carry over into the new path's first cycles (a koala redo took 192 iterations instead of
   // 20 with it).
   const BentCylinder c = bent_cylinder(24, 48, 150.0);
   SolveOptions o = converging(true);

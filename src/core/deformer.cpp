@@ -138,6 +138,7 @@ Deformer::Deformer(Deformer&& other) noexcept
       body_center_(std::move(other.body_center_)),
       state_(std::move(other.state_)),
       settled_(other.settled_),
+      solved_to_minimum_(other.solved_to_minimum_),
       settled_method_(other.settled_method_),
       settled_tolerance_(other.settled_tolerance_),
       exact_newton_(other.exact_newton_),
@@ -164,6 +165,8 @@ Deformer& Deformer::operator=(Deformer&& other) noexcept {
   solved_transforms_ = std::move(other.solved_transforms_);
   solved_offsets_ = std::move(other.solved_offsets_);
   path_ = {};           // its predictor's record refers to the other system's address
+  solved_to_minimum_ = other.solved_to_minimum_;
+  coarse_factor_of_state_ = false;  // the hierarchy is rebuilt
   predictor_.forget();  // the last frame was another deformer's
   global_.reset();
   hierarchical_.reset();
@@ -467,8 +470,7 @@ bool Deformer::follow_path(const SolveOptions& options, SolveReport& report) {
   // iterations and its drag predictor's record, while its targets stay the same. Restarted
   // instead (the editor's first batches after an undo are single iterations), a sub-step
   // was counted as reached after one iteration and the final targets were entered without
-  // the path's prediction: a 240k-face undo took 41 iterations instead of 13, a redo that
-  // entered them far from the minimum 60 turn-bounded steps more than opening the same pose.
+  // the path's prediction: a 240k-face redo took 56 iterations instead of 15.
   std::vector<RigidTransform> end(handles_.size());
   for (size_t h = 0; h < handles_.size(); ++h) end[h] = handles_[h].transform;
   std::vector<Vec3> end_offsets(forces_.size());
@@ -482,8 +484,8 @@ bool Deformer::follow_path(const SolveOptions& options, SolveReport& report) {
   // A new path from a minimum (an undo, a redo, a typed value; not a drag's frame): the
   // hierarchy's coarse factor is of the state the last targets were solved at, and the
   // first cycles after the jump would reuse it (they count as a drag's, whose factors are
-  // refreshed in the background): a fresh one at the path's start. Without it, a
-  // redo of the koala's reach (100k faces) took 206 iterations and 17 s instead of 20 and 1.9 s.
+  // refreshed in the background): a fresh one at the path's start. Without it, a redo of
+  // the koala's reach (100k faces) took 192 iterations and 18.6 s instead of 20 and 1.8 s.
   if (path_.end.empty() && solved_to_minimum_ && !coarse_factor_of_state_ && hierarchical_ &&
       options.method == SolveMethod::Hierarchical) {
     hierarchical_->prepare(state_);
