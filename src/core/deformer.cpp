@@ -486,7 +486,8 @@ bool Deformer::follow_path(const SolveOptions& options, SolveReport& report) {
   // first cycles after the jump would reuse it (they count as a drag's, whose factors are
   // refreshed in the background): a fresh one at the path's start. Without it, a redo of
   // the koala's reach (100k faces) took 192 iterations and 18.6 s instead of 20 and 1.8 s.
-  if (path_.end.empty() && solved_to_minimum_ && !coarse_factor_of_state_ && hierarchical_ &&
+  // (A path under way has iterated, so its state is no minimum: no test for a new path.)
+  if (solved_to_minimum_ && !coarse_factor_of_state_ && hierarchical_ &&
       options.method == SolveMethod::Hierarchical) {
     hierarchical_->prepare(state_);
     coarse_factor_of_state_ = true;
