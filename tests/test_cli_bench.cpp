@@ -110,6 +110,39 @@ TEST(BenchCli, DragReportsEveryFigure) {
   EXPECT_EQ(d["profile"]["per_frame_frames"].get<int>(), 4);
 }
 
+// --lag-settle: each lag checkpoint's state solved on where it is (the hand stopped there),
+// beside the converged drag's reference, which it leaves as it was.
+TEST(BenchCli, DragLagSettleSolvesEachCheckpointOnFromItsOwnState) {
+  const std::string dir = primo::test::temp_dir();
+  const std::string scenario = primo::test::source_path("assets/scenarios/bar-bend.json");
+  const CommandResult plain =
+      run_primo("bench drag " + scenario + " --frames 5 --lag-every 2 --json " + dir + "/a.json");
+  const CommandResult settled =
+      run_primo("bench drag " + scenario + " --frames 5 --lag-every 2 --lag-settle --json " + dir +
+                "/b.json");
+  ASSERT_EQ(plain.exit_code, 0) << plain.out << plain.err;
+  ASSERT_EQ(settled.exit_code, 0) << settled.out << settled.err;
+  EXPECT_NE(settled.out.find("to its own settle %"), std::string::npos) << settled.out;
+  const nlohmann::json a = read_json(dir + "/a.json"), b = read_json(dir + "/b.json");
+  EXPECT_FALSE(a["lag"][0].contains("settle_distance"));
+  EXPECT_TRUE(b["lag_settle"].get<bool>());
+  ASSERT_EQ(b["lag"].size(), 3u);
+  for (size_t i = 0; i < 3; ++i) {
+    const nlohmann::json& p = b["lag"][i];
+    EXPECT_EQ(p["max_distance"].get<double>(), a["lag"][i]["max_distance"].get<double>());
+    EXPECT_EQ(p["reference_iterations"].get<int>(), a["lag"][i]["reference_iterations"].get<int>());
+    EXPECT_GE(p["settle_distance"].get<double>(), 0.0);
+    EXPECT_LT(p["settle_distance"].get<double>(), 0.5) << "a fraction of the diagonal";
+    EXPECT_GT(p["settle_iterations"].get<int>(), 0) << "a frame of one cycle is not a minimum";
+    EXPECT_LE(p["settle_energy"].get<double>(), p["energy"].get<double>() * (1.0 + 1e-9));
+  }
+  // The last frame solved on is what the solve after the drag reaches.
+  EXPECT_NEAR(b["lag"][2]["settle_distance"].get<double>(),
+              b["last_frame_max_distance"].get<double>(), 1e-3);
+  EXPECT_NEAR(b["lag"][2]["settle_energy"].get<double>(), b["converged_energy"].get<double>(),
+              1e-6 * b["converged_energy"].get<double>());
+}
+
 // The shipped bench scenario selects on Spot what --bbox-handles builds on any mesh.
 TEST(BenchCli, DragBenchScenarioMatchesBoundingBoxHandles) {
   const std::string dir = primo::test::temp_dir();

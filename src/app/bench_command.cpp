@@ -84,6 +84,9 @@ Command register_bench(CLI::App& app) {
                    "(0: the last only)")
       ->capture_default_str()
       ->check(finite_range(0, 100000));  // as --frames
+  drag->add_flag("--lag-settle", drag_args->lag_settle,
+                 "At the same frames, also the distance to where the mesh settles when the hand "
+                 "stops there (solved on from the frame's state)");
   drag->add_option("--drag-prediction", drag_args->drag_prediction,
                    "Fraction of the last frame's change a frame starts from (0: none)")
       ->capture_default_str()

@@ -136,6 +136,7 @@ struct DragRun {
   // The drag's mesh at the lag checkpoints (frame numbers from 1).
   std::vector<int> checkpoint_frames;
   std::vector<std::vector<Vec3>> checkpoint_positions;
+  std::vector<std::vector<RigidTransform>> checkpoint_motions;  // with --lag-settle only
 };
 
 // How far the drag's mesh at a frame is from the converged shape for that frame's targets.
@@ -144,6 +145,9 @@ struct LagPoint {
   double energy = 0.0, converged_energy = 0.0;
   double max_distance = 0.0;  // as a fraction of the bounding-box diagonal
   int iterations = 0;         // the reference solve's, from the previous checkpoint's shape
+  // --lag-settle: the frame's own state solved on with its targets held (-1: not measured).
+  double settle_distance = -1.0, settle_energy = 0.0;
+  int settle_iterations = 0;
 };
 
 struct JumpRun {  // an undo or a redo
@@ -173,7 +177,7 @@ double g_sink = 0.0;  // keeps the vertex read from being optimized away
 
 // The drag on `deformer` (made with the final targets): targets back to rest, then N frames.
 void run_frames(Deformer& deformer, const DragCase& c, const SolveOptions& base, int frames,
-                int lag_every, DragRun& run) {
+                int lag_every, bool keep_motions, DragRun& run) {
   set_targets(deformer, c, 0.0);  // every handle and force back at rest
   deformer.reset();
   // The editor sets the solver up when the handles are made, before they are dragged.
@@ -206,6 +210,7 @@ void run_frames(Deformer& deformer, const DragCase& c, const SolveOptions& base,
     if (k == frames || (lag_every > 0 && k % lag_every == 0)) {
       run.checkpoint_frames.push_back(k);
       run.checkpoint_positions.push_back(positions);
+      if (keep_motions) run.checkpoint_motions.push_back(deformer.face_motions());
     }
   }
   if (const HierarchicalSolver* h = deformer.hierarchical_solver()) {
@@ -272,8 +277,15 @@ JumpRun run_jump(Deformer& deformer, const DragCase& c, const SolveOptions& base
   return run;
 }
 
+double largest_distance(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
+  double worst = 0.0;
+  for (size_t v = 0; v < a.size(); ++v) worst = std::max(worst, (a[v] - b[v]).norm());
+  return worst;
+}
+
 // The reference: a second deformer dragged through the same targets, converged at every
-// checkpoint (warm-started from the previous one), against the drag's recorded meshes.
+// checkpoint (warm-started from the previous one), against the drag's recorded meshes. With
+// the drag's states recorded (--lag-settle), each is also solved on where it is.
 std::vector<LagPoint> measure_lag(const DragCase& c, const SolveOptions& base, int frames,
                                   const DragRun& run) {
   std::vector<LagPoint> lag;
@@ -283,18 +295,30 @@ std::vector<LagPoint> measure_lag(const DragCase& c, const SolveOptions& base, i
   SolveOptions converge = base;
   converge.max_iterations = kDragConvergeMaxIterations;
   converge.tolerance = kDragConvergeTolerance;
+  SolveOptions settle = converge;
   converge.path.enabled = true;  // a checkpoint is several frames away: follow, as a drag does
   const double diagonal = bounding_box_diagonal(c.mesh);
+  // A deformer of its own, so that the reference's solves are the same with or without it.
+  std::unique_ptr<Deformer> settler;
+  if (!run.checkpoint_motions.empty())
+    settler = std::make_unique<Deformer>(c.mesh, c.prisms, c.handles, c.forces);
   for (size_t i = 0; i < run.checkpoint_frames.size(); ++i) {
     const int k = run.checkpoint_frames[i];
     set_targets(reference, c, double(k) / frames);
     const SolveReport report = reference.solve(converge);
-    const std::vector<Vec3> shape = reference.vertex_positions();
     const std::vector<Vec3>& dragged = run.checkpoint_positions[i];
-    double worst = 0.0;
-    for (size_t v = 0; v < shape.size(); ++v) worst = std::max(worst, (shape[v] - dragged[v]).norm());
-    lag.push_back({k, run.frame_energies[size_t(k) - 1], report.energy, worst / diagonal,
-                   report.iterations});
+    LagPoint point{k, run.frame_energies[size_t(k) - 1], report.energy,
+                   largest_distance(reference.vertex_positions(), dragged) / diagonal,
+                   report.iterations};
+    if (settler) {
+      set_targets(*settler, c, double(k) / frames);
+      settler->set_face_motions(run.checkpoint_motions[i]);
+      const SolveReport settled = settler->solve(settle);
+      point.settle_distance = largest_distance(settler->vertex_positions(), dragged) / diagonal;
+      point.settle_energy = settled.energy;
+      point.settle_iterations = settled.iterations;
+    }
+    lag.push_back(point);
   }
   return lag;
 }
@@ -469,7 +493,8 @@ int run_drag_bench(const DragBenchOptions& args) {
     // deformers alive at once would put the run's peak memory at twice the editor's.
     auto deformer = std::make_unique<Deformer>(c.mesh, c.prisms, c.handles, c.forces);
     drag.setup_seconds = seconds_since(start);
-    run_frames(*deformer, c, base, args.frames, args.drag_only ? 0 : args.lag_every, drag);
+    run_frames(*deformer, c, base, args.frames, args.drag_only ? 0 : args.lag_every,
+               args.lag_settle && !args.drag_only, drag);
 
     const double median_ms = 1e3 * median_of(drag.frame_seconds);
     const double max_ms =
@@ -533,33 +558,41 @@ int run_drag_bench(const DragBenchOptions& args) {
         for (const auto& [name, s] : {std::pair<const char*, double>{"undo", 0.0}, {"redo", 1.0}})
           jumps.emplace_back(name, run_jump(*deformer, c, base, s));
       deformer.reset();
-      const std::vector<Vec3>& last = drag.checkpoint_positions.back();
-      double last_distance = 0.0;
-      for (size_t v = 0; v < last.size(); ++v)
-        last_distance = std::max(last_distance, (converged_shape[v] - last[v]).norm());
-      last_distance /= diagonal;
+      const double last_distance =
+          largest_distance(converged_shape, drag.checkpoint_positions.back()) / diagonal;
       std::printf("Lag as the artist sees it: the largest vertex distance to the converged shape, "
                   "%% of the bounding-box diagonal\n");
       std::printf("  last frame against the shape solved on to: %.3f%%\n", 100.0 * last_distance);
       out["last_frame_max_distance"] = last_distance;
       std::fflush(stdout);
       const std::vector<LagPoint> lag = measure_lag(c, base, args.frames, drag);
-      std::printf("  %6s %12s %16s %8s\n", "frame", "energy gap %", "max distance %", "ref its");
+      std::printf("  %6s %12s %16s %8s", "frame", "energy gap %", "max distance %", "ref its");
+      if (args.lag_settle) std::printf(" %20s %10s", "to its own settle %", "settle its");
+      std::printf("\n");
       nlohmann::json lag_json = nlohmann::json::array();
       for (const LagPoint& p : lag) {
         const double energy_gap = p.converged_energy > 0 ? p.energy / p.converged_energy - 1.0 : 0.0;
-        std::printf("  %6d %12.3f %16.3f %8d\n", p.frame, 100.0 * energy_gap, 100.0 * p.max_distance,
+        std::printf("  %6d %12.3f %16.3f %8d", p.frame, 100.0 * energy_gap, 100.0 * p.max_distance,
                     p.iterations);
-        lag_json.push_back({{"frame", p.frame},
-                            {"energy", p.energy},
-                            {"converged_energy", p.converged_energy},
-                            {"energy_gap", energy_gap},
-                            {"max_distance", p.max_distance},
-                            {"reference_iterations", p.iterations}});
+        nlohmann::json point = {{"frame", p.frame},
+                                {"energy", p.energy},
+                                {"converged_energy", p.converged_energy},
+                                {"energy_gap", energy_gap},
+                                {"max_distance", p.max_distance},
+                                {"reference_iterations", p.iterations}};
+        if (p.settle_distance >= 0.0) {
+          std::printf(" %20.3f %10d", 100.0 * p.settle_distance, p.settle_iterations);
+          point["settle_distance"] = p.settle_distance;
+          point["settle_energy"] = p.settle_energy;
+          point["settle_iterations"] = p.settle_iterations;
+        }
+        std::printf("\n");
+        lag_json.push_back(point);
       }
       std::printf("\n");
       out["lag"] = lag_json;
       out["lag_every"] = args.lag_every;
+      out["lag_settle"] = args.lag_settle;
       if (!jumps.empty()) {
         std::printf("Undo and redo of the drag, solved in the editor's batches (tolerance %.0e)\n",
                     SolveOptions{}.tolerance);

@@ -31,6 +31,10 @@ struct DragBenchOptions {
   // solver converges to for that frame's targets: the lag the artist sees. 0: the last frame
   // only (its converged shape is the one the solve after the drag reaches).
   int lag_every = 10;
+  // At the same frames, also how far the drag's mesh is from where it settles when the hand
+  // stops there (solved on from the frame's state, the targets held): near an instability
+  // (a snap-through) that shape and the converged drag's can be different minima.
+  bool lag_settle = false;
   // After the settle: the targets back to rest and then to the pose again, each a jump
   // solved as the editor's solver thread solves an undo and a redo.
   bool undo_redo = false;
