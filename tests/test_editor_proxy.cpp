@@ -131,6 +131,15 @@ TEST(EditorProxy, APausedBuildWaitsAndThenGivesTheSameStandIn) {
   EXPECT_EQ(waited.wait().triangles, direct.triangles);
 }
 
+TEST(EditorProxy, TheStandInWaitsOnlyOnAGpuWhileTheEditorSettlesAndNothingMoves) {
+  // Drawn in software, motion needs the stand-in: it is never held back.
+  for (const bool settled : {false, true})
+    for (const bool moving : {false, true}) EXPECT_FALSE(stand_in_waits(true, settled, moving));
+  EXPECT_TRUE(stand_in_waits(false, false, false));
+  EXPECT_FALSE(stand_in_waits(false, true, false)) << "settled: the cores are free";
+  EXPECT_FALSE(stand_in_waits(false, false, true)) << "in motion: the stand-in is drawn";
+}
+
 TEST(EditorProxy, ThinPartsStayClosedWithoutHolesOrFins) {
   // A bar 1/40 as wide as it is long, dense enough that any grid coarse enough to reach the
   // budget puts its opposite sides in the same cell: clustering tore it open.

@@ -46,9 +46,7 @@ ProxyTriangles decimate_triangles(const MeshTopology& topology, int max_triangle
 // The proxy built off the window's thread: decimating a 100k-face mesh took about two seconds
 // on one core, and a mesh should open at once (it is drawn in full until its proxy is ready).
 // Destroying the build cancels it and waits only for the decimater's next check.
-// The window pauses it while the solver settles with nobody interacting: the stand-in is
-// drawn only during gestures and camera moves, and on two cores its decimation beside a
-// 240k-face scenario's first solve made the opened pose appear about a second later.
+// The window pauses it as stand_in_waits says.
 class ProxyBuild {
  public:
   ProxyBuild(std::shared_ptr<const MeshTopology> topology, int max_triangles);
@@ -71,5 +69,13 @@ class ProxyBuild {
   std::future<ProxyTriangles> future_;
   std::optional<ProxyTriangles> result_;
 };
+
+// Whether the stand-in's decimation waits, the window's decision every frame. Drawn in
+// software, never: motion needs the stand-in (a 240k-face drag started as an opened scenario
+// settled showed 4.3-8.4 updates a second while it was decimated beside it, 8.5-9.7 when it
+// was made at once; the opened pose then shows about a second later on two cores). On a GPU,
+// while the editor settles and nothing moves: the full mesh draws fast there, and the
+// decimation beside an opened scenario's first solve takes cores from it.
+bool stand_in_waits(bool drawn_in_software, bool editor_settled, bool in_motion);
 
 }  // namespace primo::editor

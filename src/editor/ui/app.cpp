@@ -94,15 +94,19 @@ void load_font(float scale) {
   io.Fonts->AddFontDefault(&config);
 }
 
-// Multisampling of the scene: 4 samples on a GPU, none on a software renderer (llvmpipe under
-// Xvfb pays 3-4x per frame for it). PRIMO_MSAA=N forces N.
-int scene_samples() {
-  if (const char* msaa = std::getenv("PRIMO_MSAA"); msaa && *msaa) return std::atoi(msaa);
+// Whether the current context draws in software (Mesa's llvmpipe: machines without a GPU,
+// remote desktops, Xvfb).
+bool software_renderer() {
   const char* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
   const std::string name = renderer ? renderer : "";
-  const bool software = name.find("llvmpipe") != std::string::npos ||
-                        name.find("softpipe") != std::string::npos ||
-                        name.find("swrast") != std::string::npos;
+  return name.find("llvmpipe") != std::string::npos || name.find("softpipe") != std::string::npos ||
+         name.find("swrast") != std::string::npos;
+}
+
+// Multisampling of the scene: 4 samples on a GPU, none on a software renderer (llvmpipe under
+// Xvfb pays 3-4x per frame for it). PRIMO_MSAA=N forces N.
+int scene_samples(bool software) {
+  if (const char* msaa = std::getenv("PRIMO_MSAA"); msaa && *msaa) return std::atoi(msaa);
   return software ? 0 : 4;
 }
 
@@ -152,6 +156,7 @@ class App : public ScriptHost {
   bool just_pressed_[3] = {false, false, false};
   const MeshTopology* shown_topology_ = nullptr;
   const ProxyTriangles* shown_proxy_ = nullptr;       // null until the document's proxy is built
+  bool software_renderer_ = false;
   std::optional<ModelOrientation> grid_orientation_;  // of the ground grid drawn (none yet)
   int settled_frames_ = 0;
   FramePacer pacer_;
@@ -454,11 +459,11 @@ void App::frame(double now, double dt) {
       (screenshot_run_ && !script_ && !options_.screenshot_ui))
     shown.grid = false;
   renderer_->draw(shown, vx, fb_h - int(vp.y * scale) - vh, vw, vh);
-  // The stand-in is drawn only in motion: its decimation waits while the solver settles (or
-  // has a request it has not taken up yet) and nothing moves (on two cores it made an opened
-  // 240k-face scenario settle a second later).
+  // The stand-in is drawn only in motion; `settled` counts a request the solver has not
+  // taken up yet as unsettled.
   if (const Document* doc = editor_.document())
-    doc->proxy->set_paused(!editor_.settled() && !renderer_->in_motion());
+    doc->proxy->set_paused(
+        stand_in_waits(software_renderer_, editor_.settled(), renderer_->in_motion()));
 
   // A --screenshot run: once the view shows a settled solve (two frames in a row).
   if (screenshot_run_ && !script_) {
@@ -492,7 +497,8 @@ int App::run() {
   ImGui_ImplOpenGL3_Init("#version 330 core");
 
   try {
-    renderer_ = std::make_unique<MeshRenderer>(shader_dir(), scene_samples());
+    software_renderer_ = software_renderer();
+    renderer_ = std::make_unique<MeshRenderer>(shader_dir(), scene_samples(software_renderer_));
   } catch (const std::exception& e) {
     std::fprintf(stderr, "primo edit: error: %s\n", e.what());
     return 1;
