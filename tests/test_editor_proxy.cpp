@@ -9,6 +9,7 @@
 #include <thread>
 #include <utility>
 
+#include "document.h"
 #include "primo/mesh_generators.h"
 #include "primo/mesh_io.h"
 #include "proxy_mesh.h"
@@ -138,6 +139,20 @@ TEST(EditorProxy, TheStandInWaitsOnlyOnAGpuWhileTheEditorSettlesAndNothingMoves)
   EXPECT_TRUE(stand_in_waits(false, false, false));
   EXPECT_FALSE(stand_in_waits(false, true, false)) << "settled: the cores are free";
   EXPECT_FALSE(stand_in_waits(false, false, true)) << "in motion: the stand-in is drawn";
+}
+
+TEST(EditorProxy, ADocumentHasAStandInAboveTheThresholdItsRendererNeeds) {
+  // 64,000 triangles: above what a software renderer draws in motion, far below a GPU's.
+  const Mesh mesh = make_cylinder(0.25, 2.0, 160, 200, FaceShape::Triangles);
+  const auto in_software = make_document(mesh, "", kStandInAboveInSoftware);
+  const auto on_gpu = make_document(mesh, "", kStandInAboveOnGpu);
+  const ProxyTriangles& stand_in = in_software->proxy->wait();
+  EXPECT_FALSE(stand_in.empty());
+  EXPECT_LE(stand_in.triangle_face.size(), 30000u);
+  EXPECT_TRUE(on_gpu->proxy->wait().empty()) << "drawn in full on a GPU";
+  EXPECT_NE(on_gpu->proxy->ready(), nullptr) << "nothing to wait for";
+  EXPECT_EQ(make_document(mesh, "")->proxy->wait().triangles, stand_in.triangles)
+      << "the default is the software renderer's";
 }
 
 TEST(EditorProxy, ThinPartsStayClosedWithoutHolesOrFins) {

@@ -20,16 +20,15 @@ bool is_scenario_path(const std::string& path) {
   return ext == ".json";
 }
 
-// Meshes of more than twice this many triangles are drawn over a proxy of at most this many
-// while the camera moves: a software renderer draws about 3 million triangles a second.
+// A stand-in has at most this many triangles.
 constexpr int kProxyTriangles = 30000;
 
-std::unique_ptr<Document> make_document(Mesh mesh, std::string mesh_path) {
+std::unique_ptr<Document> make_document(Mesh mesh, std::string mesh_path, int stand_in_above) {
   auto doc = std::make_unique<Document>();
   doc->topology = std::make_shared<const MeshTopology>(build_topology(mesh));
   doc->proxy = std::make_shared<ProxyBuild>(
       doc->topology,
-      int(doc->topology->triangle_face.size()) > 2 * kProxyTriangles ? kProxyTriangles : INT_MAX);
+      int(doc->topology->triangle_face.size()) > stand_in_above ? kProxyTriangles : INT_MAX);
   doc->mesh = std::make_shared<const Mesh>(std::move(mesh));
   doc->mesh_path = std::move(mesh_path);
   doc->state = initial_edit_state(doc->n_faces());
@@ -48,10 +47,10 @@ std::string note_without_path(const std::string& note, const std::string& path) 
 
 }  // namespace
 
-std::unique_ptr<Document> load_document(const std::string& path) {
+std::unique_ptr<Document> load_document(const std::string& path, int stand_in_above) {
   if (!is_scenario_path(path)) {
     LoadedMesh loaded = load_mesh_noted(path);
-    auto doc = make_document(std::move(loaded.mesh), path);
+    auto doc = make_document(std::move(loaded.mesh), path, stand_in_above);
     doc->load_note = note_without_path(loaded.note, path);
     doc->state.orientation = mesh_orientation(path);
     doc->saved_state = doc->state;
@@ -62,7 +61,7 @@ std::unique_ptr<Document> load_document(const std::string& path) {
   LoadedMesh loaded = load_mesh_noted(scenario.mesh_path);
   Mesh mesh = std::move(loaded.mesh);
   const ResolvedScenario resolved = resolve_scenario(scenario, mesh);
-  auto doc = make_document(std::move(mesh), scenario.mesh_path);
+  auto doc = make_document(std::move(mesh), scenario.mesh_path, stand_in_above);
   doc->load_note = note_without_path(loaded.note, scenario.mesh_path);
   doc->scenario_path = path;
   doc->solver = scenario.solver;

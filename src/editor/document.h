@@ -39,12 +39,22 @@ struct Document {
 // True for paths the editor opens as scenarios (".json").
 bool is_scenario_path(const std::string& path);
 
+// Meshes of more than this many triangles get a stand-in for motion (Document::proxy). A
+// software renderer draws about 3 million triangles a second: a 60,000-triangle mesh already
+// costs 20 ms a frame. A GPU draws hundreds of millions: there a mesh is drawn in full in
+// motion up to 2 million (a few milliseconds a frame even on an integrated one), and a big
+// mesh's decimation (1-2 core-seconds at 240k faces) is not spent on every open.
+inline constexpr int kStandInAboveInSoftware = 60000;
+inline constexpr int kStandInAboveOnGpu = 2000000;
+
 // Reads a mesh (OBJ, OFF, PLY, STL, OM, glTF/GLB, FBX, DAE, 3MF) or a scenario with its mesh,
 // resolved. Slow for big meshes: call it off the UI thread. Throws primo::Error with a one-line
 // message.
-std::unique_ptr<Document> load_document(const std::string& path);
+std::unique_ptr<Document> load_document(const std::string& path,
+                                        int stand_in_above = kStandInAboveInSoftware);
 
 // A document for a mesh already in memory (tests, generated meshes).
-std::unique_ptr<Document> make_document(Mesh mesh, std::string mesh_path);
+std::unique_ptr<Document> make_document(Mesh mesh, std::string mesh_path,
+                                        int stand_in_above = kStandInAboveInSoftware);
 
 }  // namespace primo::editor

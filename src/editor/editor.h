@@ -142,6 +142,9 @@ class Editor {
   void set_viewport(const ViewportRect& rect);
   const ViewportRect& viewport() const { return viewport_; }
   void set_picker(Picker* picker) { picker_ = picker; }
+  // Meshes opened from now on get a stand-in for motion above this many triangles (the window
+  // says how it draws: document.h).
+  void set_stand_in_above(int triangles) { stand_in_above_ = triangles; }
   // `ui_mouse` / `ui_keyboard`: the UI wants this event (ImGui's capture flags).
   void handle_event(const InputEvent& event, bool ui_mouse, bool ui_keyboard);
   void cancel_gesture();
@@ -305,6 +308,7 @@ class Editor {
   double autosave_every_ = 120.0, last_autosave_ = 0.0;
   RecentFiles recent_;
   Preferences preferences_;
+  int stand_in_above_ = kStandInAboveInSoftware;
   double settle_limit_ = 0.0;        // seconds; 0: settle until converged
   double last_submit_clock_ = 0.0;   // clock_ when the solver was last given something to do
   double settle_stopped_at_ = -1.0;  // the submission the settle limit stopped

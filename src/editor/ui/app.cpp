@@ -505,6 +505,7 @@ int App::run() {
   }
   renderer_->set_camera(&editor_.camera());
   editor_.set_picker(renderer_.get());
+  editor_.set_stand_in_above(software_renderer_ ? kStandInAboveInSoftware : kStandInAboveOnGpu);
   if (!options_.script.empty()) {
     try {
       script_ = std::make_unique<ScriptPlayer>(
