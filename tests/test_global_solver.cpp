@@ -132,3 +132,42 @@ TEST(GlobalSolver, AReusedStepsGradientInChunksIsTheFullAssemblysGradient) {
   EXPECT_GT(max_difference(from_fresh, start), 1e-3);
   EXPECT_LT(max_difference(from_reused, from_fresh), 1e-9);
 }
+
+TEST(GlobalSolver, AReusedFactorsStepIsHalvedOnlyAsOftenAsAllowed) {
+  // From the bent cylinder's start, far from its minimum, a factor kept for every step soon
+  // gives steps that overshoot. With the default halvings such a step is cut and the factor
+  // kept; allowed none (a drag's frame, HierarchicalSolver), a fresh factor makes it instead.
+  Deformer d = bent_cylinder();
+  const RigidSystem& system = d.system();
+  auto run = [&](int halvings, std::vector<GlobalStep>& steps, std::vector<int>& factorizations) {
+    GlobalSolver solver(system, GlobalSolver::Factorization::SupernodalOneThread);
+    solver.set_factor_reuse(1000, 0, halvings);
+    std::vector<BodyState> state = d.body_states();
+    for (int k = 0; k < 12; ++k) {
+      steps.push_back(solver.iterate(state, false, true));
+      factorizations.push_back(solver.timings().factorizations);
+    }
+  };
+  std::vector<GlobalStep> cut, whole;
+  std::vector<int> cut_factorizations, whole_factorizations;
+  run(GlobalSolver::kReusedStepHalvings, cut, cut_factorizations);
+  run(0, whole, whole_factorizations);
+
+  size_t first_cut = 0;
+  while (first_cut < cut.size() &&
+         !(cut[first_cut].reused_factorization && cut[first_cut].step_scale < 1.0))
+    ++first_cut;
+  ASSERT_LT(first_cut, cut.size()) << "no reused step was halved";
+  EXPECT_EQ(cut_factorizations[first_cut], 1);  // the first step's factor, still in use
+  for (size_t k = 0; k < first_cut; ++k) {
+    EXPECT_EQ(whole[k].energy_after, cut[k].energy_after) << "step " << k;
+    EXPECT_TRUE(whole[k].reused_factorization || k == 0) << "step " << k;
+  }
+  const GlobalStep& fresh = whole[first_cut];
+  EXPECT_FALSE(fresh.reused_factorization);
+  EXPECT_EQ(whole_factorizations[first_cut], 2);
+  EXPECT_TRUE(fresh.decreased);
+  EXPECT_LT(fresh.energy_after, cut[first_cut].energy_after);
+  for (const GlobalStep& s : whole)
+    if (s.reused_factorization) EXPECT_EQ(s.step_scale, 1.0);
+}

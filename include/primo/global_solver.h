@@ -82,8 +82,11 @@ class GlobalSolver {
   // thread from the matrix of the step that found the factor spent, while steps go on with the
   // old factor; it takes over `background_lag` steps later, waiting for the thread if needed. A
   // step that fails with the old factor takes the new one at once. The takeover step is fixed,
-  // so the iterates do not depend on timing.
-  void set_factor_reuse(int max_reuse, int background_lag = 0);
+  // so the iterates do not depend on timing. A reused factor's step may be halved up to
+  // `reused_step_halvings` times before it counts as failed (and a fresh factor is made).
+  void set_factor_reuse(int max_reuse, int background_lag = 0,
+                        int reused_step_halvings = kReusedStepHalvings);
+  static constexpr int kReusedStepHalvings = 3;
   // Frames (a rotation per body, owned by the caller and kept current) in which the bodies'
   // motions are measured, e.g. the orientation of a coarse cluster's prisms. A reused factor
   // is then applied turned by each body's rotation since its matrix was assembled: a pose

@@ -122,6 +122,7 @@ struct GlobalSolver::Impl {
   Eigen::CholmodSimplicialLLT<SparseMatrix, Eigen::Lower> simplicial;
 
   int max_reuse = std::numeric_limits<int>::max();  // steps a factor serves after its first
+  int reused_step_halvings = GlobalSolver::kReusedStepHalvings;
   // Refactorization on a background thread (supernodal only): once the factor in use has
   // served its steps, the current matrix is factorized into `spare` while steps go on with
   // the old factor; the new factor takes over `lag` steps later, waiting for the thread if
@@ -558,9 +559,10 @@ void GlobalSolver::set_body_frames(const std::vector<Mat3>* frames) {
   impl_->factor_frames.clear();
 }
 
-void GlobalSolver::set_factor_reuse(int max_reuse, int background_lag) {
+void GlobalSolver::set_factor_reuse(int max_reuse, int background_lag, int reused_step_halvings) {
   Impl& m = *impl_;
   m.max_reuse = std::max(max_reuse, 0);
+  m.reused_step_halvings = std::max(reused_step_halvings, 0);
   m.background.lag = m.supernodal_kind() ? std::max(background_lag, 0) : 0;
 }
 const GlobalSolverTimings& GlobalSolver::timings() const { return impl_->timings; }
@@ -620,8 +622,8 @@ GlobalStep GlobalSolver::iterate(std::vector<BodyState>& state, bool exact_hessi
   };
 
   // A factor from an earlier iteration still gives a descent direction (the matrix it came
-  // from is positive definite), and needs only the gradient; a few halvings at most before
-  // paying for a fresh one.
+  // from is positive definite), and needs only the gradient; a few halvings at most
+  // (set_factor_reuse) before paying for a fresh one.
   auto phase = Clock::now();
   bool assembled = false;  // the full system of `state` (not only its gradient)
   const bool spent = m.steps_on_factor > m.max_reuse;
@@ -637,7 +639,7 @@ GlobalStep GlobalSolver::iterate(std::vector<BodyState>& state, bool exact_hessi
     m.timings.assembly += seconds_since(phase);
     fill_rhs();
     auto reused_step = [&] {
-      if (!search(m.factor_exact, 3)) return false;
+      if (!search(m.factor_exact, m.reused_step_halvings)) return false;
       step.reused_factorization = true;
       ++m.steps_on_factor;
       return true;

@@ -418,13 +418,22 @@ void HierarchicalSolver::solve_level(int l) {
     // in the background so that no frame stops for a factorization; once they stay put, in
     // the foreground, where a fresh factor pays off at once.
     const int lag = drag_factor_lag();
-    const bool moving = cycles_since_restart_ <= kMovingCycles && lag > 0;
+    const bool in_drag = cycles_since_restart_ <= kMovingCycles;
+    const bool moving = in_drag && lag > 0;
     const bool near_minimum =
         settle_start_decrease_ && *settle_start_decrease_ <= kNearMinimumDecrease;
     const int reuse = moving         ? options_.drag_factor_reuse
                       : near_minimum ? options_.settle_factor_reuse
                                      : options_.coarse_factor_reuse;
-    coarse_solver_->set_factor_reuse(reuse, moving ? lag : 0);
+    // A drag's frame (a solve of one cycle or two) has no later step to make up for a cut one:
+    // a reused factor whose full step overshoots is replaced by a fresh one rather than
+    // halved. Cut steps left a thin blade's drag up to 470 times above its minimum, growing
+    // from frame to frame as the drag predictor repeated them (docs/performance.md, part 21).
+    // Longer solves keep the halvings: there they cost less than factorizing (a full solve
+    // from rest at 240k faces took 14 iterations instead of 13 without them).
+    const bool drag_frame = in_drag && iterations_ahead_ <= kMovingCycles;
+    coarse_solver_->set_factor_reuse(reuse, moving ? lag : 0,
+                                     drag_frame ? 0 : GlobalSolver::kReusedStepHalvings);
     // coarse_factor_reuse 0 makes a drag's steps factorize too.
     const bool reusing = moving ? options_.coarse_factor_reuse > 0 : reuse > 0;
     // One coarse Newton iteration; false when it did not lower the energy.
