@@ -471,16 +471,16 @@ bool Deformer::follow_path(const SolveOptions& options, SolveReport& report) {
   // instead (the editor's first batches after an undo are single iterations), a sub-step
   // was counted as reached after one iteration and the final targets were entered without
   // the path's prediction: a 240k-face redo took 56 iterations instead of 15.
+  const int steps = path_steps_needed(options.path);
+  if (steps <= 1) {  // every drag frame: no target vectors built
+    path_ = {};
+    return true;
+  }
   std::vector<RigidTransform> end(handles_.size());
   for (size_t h = 0; h < handles_.size(); ++h) end[h] = handles_[h].transform;
   std::vector<Vec3> end_offsets(forces_.size());
   for (size_t f = 0; f < forces_.size(); ++f) end_offsets[f] = forces_[f].target_offset;
   if (!(same_transforms(path_.end, end) && path_.end_offsets == end_offsets)) path_ = {};
-  const int steps = path_steps_needed(options.path);
-  if (steps <= 1) {
-    path_ = {};
-    return true;
-  }
   // A new path from a minimum (an undo, a redo, a typed value; not a drag's frame): the
   // hierarchy's coarse factor is of the state the last targets were solved at, and the
   // first cycles after the jump would reuse it (they count as a drag's, whose factors are
@@ -492,8 +492,8 @@ bool Deformer::follow_path(const SolveOptions& options, SolveReport& report) {
     hierarchical_->prepare(state_);
     coarse_factor_of_state_ = true;
   }
-  path_.end = end;
-  path_.end_offsets = end_offsets;
+  path_.end = std::move(end);
+  path_.end_offsets = std::move(end_offsets);
   const std::vector<RigidTransform> from = solved_transforms_;
   const std::vector<Vec3> from_offsets = solved_offsets_;
   int budget = options.path.max_iterations;

@@ -79,9 +79,9 @@ void Editor::open_file(const std::string& path, bool recovered) {
   if (task_.valid()) return error("Still busy with " + task_label_ + "; try again when it is done");
   task_label_ = (recovered ? "Recovering " : "Opening ") + file_name(path);
   task_started_ = clock_;
-  auto load = [path, above = stand_in_above_] { return load_document(path, above); };
-  task_ = std::async(std::launch::async, [this, load, path, recovered]() -> std::function<void()> {
-    std::shared_ptr<Document> doc = load();
+  const int above = stand_in_above_;  // read here: the load runs on another thread
+  task_ = std::async(std::launch::async, [this, above, path, recovered]() -> std::function<void()> {
+    std::shared_ptr<Document> doc = load_document(path, above);
     return [this, doc, path, recovered]() mutable {
       if (recovered) {
         // Unsaved work with no file of its own: Save asks where, and it counts as changed.
