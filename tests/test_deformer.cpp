@@ -380,7 +380,7 @@ TEST(Deformer, HierarchicalStartEndsAtTheGlobalMinimum) {
   EXPECT_GT(r.hierarchical_cycles, 0);
   EXPECT_LT(r.iterations, exact.iterations);
   EXPECT_NEAR(r.energy, exact.energy, 1e-9 * exact.energy);
-  EXPECT_LT(primo::test::max_distance(hybrid.vertex_positions(), global.vertex_positions()),
+  EXPECT_LT(largest_point_distance(hybrid.vertex_positions(), global.vertex_positions()),
             1e-6 * c.diagonal);
 }
 
@@ -398,7 +398,7 @@ TEST(Deformer, FaceMotionsRestoreTheWholeStateIncludingHandlesFreeParts) {
   ASSERT_TRUE(solved.solve(o).converged);
   Deformer copy(c.mesh, PrismParameters{}, c.handles);
   copy.set_face_motions(solved.face_motions());
-  EXPECT_LT(primo::test::max_distance(copy.vertex_positions(), solved.vertex_positions()),
+  EXPECT_LT(largest_point_distance(copy.vertex_positions(), solved.vertex_positions()),
             1e-12 * c.diagonal);
   EXPECT_NEAR(copy.energy(), solved.energy(), 1e-12 * solved.energy());
   // The state counts as solved for these targets: nothing to follow, nothing to do.

@@ -15,7 +15,6 @@ using namespace primo;
 using primo::test::bent_cylinder;
 using primo::test::BentCylinder;
 using primo::test::faces_where;
-using primo::test::max_distance;
 
 namespace {
 
@@ -125,7 +124,8 @@ TEST(DeformerPath, APathResumedInSmallBudgetsEndsAtTheSameMinimum) {
   EXPECT_EQ(sub_steps, one_call.path_steps);
   EXPECT_GT(calls, one_call.path_steps / 2);  // the path was spread over several calls
   EXPECT_NEAR(r.energy, one_call.energy, 1e-6 * one_call.energy);
-  EXPECT_LT(max_distance(batched.vertex_positions(), whole.vertex_positions()), 1e-4 * c.diagonal);
+  EXPECT_LT(largest_point_distance(batched.vertex_positions(), whole.vertex_positions()),
+            1e-4 * c.diagonal);
 }
 
 TEST(DeformerPath, APathResumedOneIterationAtATimeIsTheSamePath) {
@@ -159,7 +159,7 @@ TEST(DeformerPath, APathResumedOneIterationAtATimeIsTheSamePath) {
     std::cout << "one call: " << one_call.path_iterations << " + " << one_call.iterations
               << " iterations; single ones: " << path_iterations << " + " << iterations << "\n";
     EXPECT_NEAR(r.energy, one_call.energy, 1e-6 * one_call.energy);
-    EXPECT_LT(max_distance(batched.vertex_positions(), whole.vertex_positions()),
+    EXPECT_LT(largest_point_distance(batched.vertex_positions(), whole.vertex_positions()),
               1e-4 * c.diagonal);
   }
 }
@@ -205,11 +205,13 @@ TEST(DeformerPath, DefaultMaterialPosesASubdividedModelAlike) {
     return x;
   };
   const PrismParameters product = PrismParameters::product_default();
-  const double apart = max_distance(pose(coarse.mesh, coarse.handles, product),
-                                    pose(fine_mesh, fine_handles, product)) / coarse.diagonal;
-  const double legacy_apart = max_distance(pose(coarse.mesh, coarse.handles, PrismParameters{}),
-                                           pose(fine_mesh, fine_handles, PrismParameters{})) /
-                              coarse.diagonal;
+  const double apart = largest_point_distance(pose(coarse.mesh, coarse.handles, product),
+                                              pose(fine_mesh, fine_handles, product)) /
+                       coarse.diagonal;
+  const double legacy_apart =
+      largest_point_distance(pose(coarse.mesh, coarse.handles, PrismParameters{}),
+                             pose(fine_mesh, fine_handles, PrismParameters{})) /
+      coarse.diagonal;
   std::cout << "[ metric   ] tube and its Loop subdivision, largest vertex distance: "
             << 100 * apart << "% of the diagonal with the default half_thickness, "
             << 100 * legacy_apart << "% with height 1 (mean edge lengths)\n";

@@ -13,7 +13,6 @@
 
 using namespace primo;
 using primo::test::faces_where;
-using primo::test::max_distance;
 
 namespace {
 
@@ -163,14 +162,15 @@ TEST(DragPredictor, ADragFollowsTheHandCloserAndReachesTheSameMinimum) {
   const double diagonal =
       bounding_box_diagonal(load_mesh(test::source_path("assets/meshes/spot_quadrangulated.obj")));
   EXPECT_LT(std::abs(a.energy / b.energy - 1.0), 1e-6);
-  EXPECT_LT(max_distance(plain.deformer.vertex_positions(), predicted.deformer.vertex_positions()),
+  EXPECT_LT(largest_point_distance(plain.deformer.vertex_positions(),
+                                   predicted.deformer.vertex_positions()),
             1e-4 * diagonal);
 
   const double plain_gap = plain.last_frame_energy / a.energy - 1.0;
   const double predicted_gap = predicted.last_frame_energy / a.energy - 1.0;
   const std::vector<Vec3> minimum = predicted.deformer.vertex_positions();
-  const double plain_lag = max_distance(plain.last_frame, minimum) / diagonal;
-  const double predicted_lag = max_distance(predicted.last_frame, minimum) / diagonal;
+  const double plain_lag = largest_point_distance(plain.last_frame, minimum) / diagonal;
+  const double predicted_lag = largest_point_distance(predicted.last_frame, minimum) / diagonal;
   std::cout << "[ metric   ] Spot drag, 30 frames: last frame above the minimum " << 100 * plain_gap
             << "% without prediction, " << 100 * predicted_gap << "% with; largest vertex lag "
             << 100 * plain_lag << "% and " << 100 * predicted_lag << "% of the diagonal\n";
@@ -191,5 +191,5 @@ TEST(DragPredictor, ADragFollowsTheHandCloserAndReachesTheSameMinimum) {
 
   // The same drag again gives the same bits.
   const DragResult again = drag_spot(1.0);
-  EXPECT_EQ(max_distance(again.last_frame, predicted.last_frame), 0.0);
+  EXPECT_EQ(largest_point_distance(again.last_frame, predicted.last_frame), 0.0);
 }

@@ -3,7 +3,6 @@
 // settle limit of the solver preferences.
 
 #include <gtest/gtest.h>
-
 #include <imgui.h>
 #include <imgui_internal.h>
 
@@ -17,8 +16,9 @@
 #include "headless_imgui.h"
 #include "key_map.h"
 #include "panels.h"
-#include "preferences_window.h"
 #include "preferences.h"
+#include "preferences_window.h"
+#include "primo/geometry.h"
 #include "primo/mesh_generators.h"
 #include "test_support.h"
 
@@ -219,7 +219,7 @@ TEST(EditorKeys, ASettleLimitStopsALongSolveAndContinueSolvesOn) {
   ASSERT_TRUE(e.continue_solving());
   ASSERT_TRUE(s.settle());
   EXPECT_EQ(e.solver_status().phase, SolverPhase::Settled);
-  EXPECT_GT(primo::test::max_distance(stopped, e.positions()), 0.01 * s.diagonal())
+  EXPECT_GT(largest_point_distance(stopped, e.positions()), 0.01 * s.diagonal())
       << "the limit stopped the settle well before the twisted shape";
 }
 
@@ -242,7 +242,7 @@ TEST(EditorKeys, UndoGroupTakesBackARunOfDragsOfOneHandle) {
   s.key(GLFW_KEY_Z, GLFW_MOD_CONTROL | GLFW_MOD_ALT);
   EXPECT_EQ(h.position(), steps - 1) << "the three drags at once";
   ASSERT_TRUE(s.settle());
-  EXPECT_LT(primo::test::max_distance(before, e.positions()), 1e-6 * s.diagonal());
+  EXPECT_LT(largest_point_distance(before, e.positions()), 1e-6 * s.diagonal());
   s.key(GLFW_KEY_Z, GLFW_MOD_CONTROL | GLFW_MOD_SHIFT);
   EXPECT_EQ(h.position(), steps) << "redo brings the first drag back";
 }

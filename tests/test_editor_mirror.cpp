@@ -6,12 +6,12 @@
 #include <cmath>
 #include <random>
 
-#include "primo/mesh_io.h"
-
 #include "editor_harness.h"
 #include "mirror.h"
 #include "primo/deformer.h"
+#include "primo/geometry.h"
 #include "primo/mesh_generators.h"
+#include "primo/mesh_io.h"
 #include "scenario_bridge.h"
 #include "test_support.h"
 
@@ -233,7 +233,7 @@ TEST(EditorMirror, AHandleMadeOnOneSideGetsATwinThatFollowsIt) {
     worst = std::max(worst, (reflect(map, p[size_t(v)]) - p[size_t(vertex_twin[size_t(v)])]).norm());
   }
   EXPECT_LT(worst, 1e-5 * s.diagonal());
-  EXPECT_GT(primo::test::max_distance(p, t.rest_points), 0.1 * s.diagonal());
+  EXPECT_GT(largest_point_distance(p, t.rest_points), 0.1 * s.diagonal());
 
   // Saved and opened again, the pair is still a pair.
   const Scenario saved = export_scenario(e.document()->state, "bar.obj", "", SolverSpec{}, nullptr);

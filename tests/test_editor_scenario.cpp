@@ -14,6 +14,7 @@
 #include "paint.h"
 #include "primo/deformer.h"
 #include "primo/error.h"
+#include "primo/geometry.h"
 #include "primo/mesh_generators.h"
 #include "primo/mesh_io.h"
 #include "primo/scenario.h"
@@ -157,12 +158,6 @@ bool settle(Editor& editor) {
   return false;
 }
 
-double largest_distance(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
-  double d = 0.0;
-  for (size_t i = 0; i < a.size(); ++i) d = std::max(d, (a[i] - b[i]).norm());
-  return d;
-}
-
 Eigen::Quaterniond twist(double degrees) {
   return Eigen::Quaterniond(Eigen::AngleAxisd(degrees * M_PI / 180.0, Vec3::UnitY()));
 }
@@ -213,7 +208,7 @@ TEST(EditorScenario, ASavedPoseReopensAndDeformsToThePoseShown) {
   std::vector<HandleMode> reopened_modes;
   for (const HandleGroup& g : reopened.document()->state.handles) reopened_modes.push_back(g.mode);
   EXPECT_EQ(reopened_modes, modes);
-  const double reopened_apart = largest_distance(reopened.positions(), shown) / diagonal;
+  const double reopened_apart = largest_point_distance(reopened.positions(), shown) / diagonal;
   EXPECT_LT(reopened_apart, 1e-6);
 
   // `primo deform` of the saved scenario: the pose shown.
@@ -222,7 +217,7 @@ TEST(EditorScenario, ASavedPoseReopensAndDeformsToThePoseShown) {
   const Mesh out = load_mesh(dir + "/out.obj");
   std::vector<Vec3> deformed;
   for (auto v : out.vertices()) deformed.push_back(out.point(v));
-  const double deform_apart = largest_distance(deformed, shown) / diagonal;
+  const double deform_apart = largest_point_distance(deformed, shown) / diagonal;
   EXPECT_LT(deform_apart, 1e-6);
 
   // Without the solved state the same scenario solves to another pose: the check means
@@ -234,7 +229,7 @@ TEST(EditorScenario, ASavedPoseReopensAndDeformsToThePoseShown) {
   const Mesh bare_out = load_mesh(dir + "/bare.obj");
   std::vector<Vec3> from_rest;
   for (auto v : bare_out.vertices()) from_rest.push_back(bare_out.point(v));
-  const double bare_apart = largest_distance(from_rest, shown) / diagonal;
+  const double bare_apart = largest_point_distance(from_rest, shown) / diagonal;
   std::cout << "[ metric   ] saved pose, largest vertex distance to the pose shown: reopened "
             << reopened_apart << ", primo deform " << deform_apart
             << ", primo deform without the solved state " << bare_apart << " (of the diagonal)\n";

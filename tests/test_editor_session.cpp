@@ -11,12 +11,12 @@
 
 #include "editor_harness.h"
 #include "primo/deformer.h"
+#include "primo/geometry.h"
 #include "primo/mesh_generators.h"
 #include "test_support.h"
 
 using namespace primo;
 using namespace primo::editor;
-using primo::test::max_distance;
 using primo::editor::harness::Harness;
 
 TEST(EditorSession, DragIsOneStepAndUndoRestoresTheMesh) {
@@ -41,12 +41,14 @@ TEST(EditorSession, DragIsOneStepAndUndoRestoresTheMesh) {
   const DeformationInputs in = deformation_inputs(d.state);
   Deformer direct(*d.mesh, in.params, in.handles, in.forces);
   direct.solve(SolveOptions{});
-  EXPECT_LT(max_distance(s.editor.positions(), direct.vertex_positions()), 1e-6 * s.diagonal());
+  EXPECT_LT(largest_point_distance(s.editor.positions(), direct.vertex_positions()),
+            1e-6 * s.diagonal());
 
   s.key(GLFW_KEY_Z, GLFW_MOD_CONTROL);
   EXPECT_TRUE(d.state.handles[1].pose.is_identity());
   ASSERT_TRUE(s.settle());
-  EXPECT_LT(max_distance(s.editor.positions(), d.topology->rest_points), 1e-6 * s.diagonal());
+  EXPECT_LT(largest_point_distance(s.editor.positions(), d.topology->rest_points),
+            1e-6 * s.diagonal());
   s.key(GLFW_KEY_Z, GLFW_MOD_CONTROL | GLFW_MOD_SHIFT);
   EXPECT_EQ(d.state.handles[1].pose.translate, moved);
 
@@ -246,7 +248,8 @@ TEST(EditorSession, SettlesToTheMinimumWhateverTheIterationLimit) {
   const DeformationInputs in = deformation_inputs(d.state);
   Deformer direct(*d.mesh, in.params, in.handles, in.forces);
   direct.solve(SolveOptions{});
-  EXPECT_LT(max_distance(s.editor.positions(), direct.vertex_positions()), 1e-6 * s.diagonal());
+  EXPECT_LT(largest_point_distance(s.editor.positions(), direct.vertex_positions()),
+            1e-6 * s.diagonal());
   EXPECT_FALSE(s.editor.continue_solving()) << "nothing has stopped";
 }
 
@@ -322,14 +325,14 @@ TEST(EditorSession, TheHistoryListGoesBackToAnyStep) {
   const std::vector<Vec3> rest = s.editor.positions();
   s.drag("Handle 2", 80, -30);
   ASSERT_TRUE(s.settle());
-  ASSERT_GT(max_distance(s.editor.positions(), rest), 0.01 * s.diagonal());
+  ASSERT_GT(largest_point_distance(s.editor.positions(), rest), 0.01 * s.diagonal());
   s.editor.go_to_history(before_drag);  // as if clicked in Edit > History
   ASSERT_TRUE(s.settle());
   EXPECT_EQ(s.editor.document()->history.position(), before_drag);
-  EXPECT_LT(max_distance(s.editor.positions(), rest), 1e-6 * s.diagonal());
+  EXPECT_LT(largest_point_distance(s.editor.positions(), rest), 1e-6 * s.diagonal());
   s.editor.go_to_history(before_drag + 1);  // and forward again
   ASSERT_TRUE(s.settle());
-  EXPECT_GT(max_distance(s.editor.positions(), rest), 0.01 * s.diagonal());
+  EXPECT_GT(largest_point_distance(s.editor.positions(), rest), 0.01 * s.diagonal());
 }
 
 TEST(EditorSession, AnIdleWaitIsNotAFrame) {

@@ -9,13 +9,13 @@
 #include "edit_state.h"
 #include "energy_map.h"
 #include "primo/deformer.h"
+#include "primo/geometry.h"
 #include "primo/mesh_generators.h"
 #include "solver_worker.h"
 #include "test_support.h"
 
 using namespace primo;
 using namespace primo::editor;
-using primo::test::max_distance;
 
 namespace {
 
@@ -77,7 +77,8 @@ TEST(EditorSolverWorker, SettlesWhereADirectSolveEnds) {
   EXPECT_EQ(s.phase, SolverPhase::Settled);
   ASSERT_TRUE(s.geometry);
   EXPECT_EQ(s.geometry->render_normals.size(), 3 * b.mesh->n_vertices());
-  EXPECT_LT(max_distance(s.geometry->positions, b.direct()), 1e-6 * b.topology->bbox_diagonal);
+  EXPECT_LT(largest_point_distance(s.geometry->positions, b.direct()),
+            1e-6 * b.topology->bbox_diagonal);
 }
 
 TEST(EditorSolverWorker, LatestTargetsWinAndBackToRestRestoresTheMesh) {
@@ -89,10 +90,11 @@ TEST(EditorSolverWorker, LatestTargetsWinAndBackToRestRestoresTheMesh) {
     w.submit_targets({{b.state.handles[0].transform(), b.state.handles[1].transform()}, {}});
   }
   ASSERT_TRUE(w.wait_idle(60));
-  EXPECT_LT(max_distance(w.status().geometry->positions, b.direct()), 1e-6 * b.topology->bbox_diagonal);
+  EXPECT_LT(largest_point_distance(w.status().geometry->positions, b.direct()),
+            1e-6 * b.topology->bbox_diagonal);
   w.submit_targets({{RigidTransform{}, RigidTransform{}}, {}});
   ASSERT_TRUE(w.wait_idle(60));
-  EXPECT_LT(max_distance(w.status().geometry->positions, b.topology->rest_points),
+  EXPECT_LT(largest_point_distance(w.status().geometry->positions, b.topology->rest_points),
             1e-6 * b.topology->bbox_diagonal);
 }
 
@@ -227,6 +229,6 @@ TEST(EditorSolverWorker, AJumpOnTheHierarchicalSolverSettlesWhereADirectSolveEnd
   o.method = SolveMethod::Hierarchical;
   ASSERT_TRUE(direct.solve(o).converged);
   EXPECT_GT(direct.hierarchical_solver()->timings().newton_krylov_steps, 0);
-  EXPECT_LT(max_distance(w.status().geometry->positions, direct.vertex_positions()),
+  EXPECT_LT(largest_point_distance(w.status().geometry->positions, direct.vertex_positions()),
             1e-4 * t.topology->bbox_diagonal);
 }

@@ -19,7 +19,6 @@
 
 using namespace primo;
 using primo::test::faces_where;
-using primo::test::max_distance;
 
 namespace {
 
@@ -73,7 +72,8 @@ void expect_close_to_flat(const PosedMesh& s, const char* name, int coarsest_max
   Deformer hier(s.mesh, PrismParameters{}, s.handles);
   const SolveReport rh = hier.solve(hierarchical(400, 1e-7, coarsest_max_bodies));
   const double diagonal = bounding_box_diagonal(s.mesh);
-  const double position_error = max_distance(hier.vertex_positions(), flat.vertex_positions()) / diagonal;
+  const double position_error =
+      largest_point_distance(hier.vertex_positions(), flat.vertex_positions()) / diagonal;
   std::cout << "[ metric   ] " << name << ": hierarchical " << rh.iterations << " cycles ("
             << hier.hierarchical_solver()->levels() << " levels), energy " << rh.energy
             << " vs flat " << rg.energy << " (" << 100 * (rh.energy / rg.energy - 1)
@@ -257,11 +257,11 @@ TEST(HierarchicalSolver, DraggingBackRestoresTheInput) {
   d.solve(hierarchical(50, 1e-8));
   const std::vector<Vec3> rest = rest_points(s.mesh);
   const double diagonal = bounding_box_diagonal(s.mesh);
-  ASSERT_GT(max_distance(d.vertex_positions(), rest), 0.1 * diagonal);
+  ASSERT_GT(largest_point_distance(d.vertex_positions(), rest), 0.1 * diagonal);
   d.set_handle_transform(1, RigidTransform::identity());
   const SolveReport back = d.solve(hierarchical(500, 1e-12));
   std::cout << "[ metric   ] hierarchical drag back: " << back.iterations << " cycles\n";
-  EXPECT_LT(max_distance(d.vertex_positions(), rest), 1e-6 * diagonal);
+  EXPECT_LT(largest_point_distance(d.vertex_positions(), rest), 1e-6 * diagonal);
 }
 
 TEST(HierarchicalSolver, RecoversFromACollapse) {
@@ -282,7 +282,8 @@ TEST(HierarchicalSolver, RecoversFromACollapse) {
   SolveOptions o = hierarchical(3000, 1e-13);
   o.hierarchical.hierarchy.coarsest_max_bodies = 60;
   const SolveReport r = d.solve(o);
-  const double error = max_distance(d.vertex_positions(), rest_points(mesh)) / bounding_box_diagonal(mesh);
+  const double error =
+      largest_point_distance(d.vertex_positions(), rest_points(mesh)) / bounding_box_diagonal(mesh);
   std::cout << "[ metric   ] hierarchical collapse recovery: " << r.iterations << " cycles, max error "
             << error << " of the diagonal\n";
   EXPECT_LT(error, 1e-4);
@@ -369,7 +370,7 @@ TEST(HierarchicalSolver, AnotherMethodsIterationRestartsTheAcceleration) {
   }
   b.set_face_motions(b.face_motions());  // the same state, set from outside
   for (Deformer* d : {&a, &b}) d->solve(hierarchical(3, 0.0));
-  EXPECT_LT(max_distance(a.vertex_positions(), b.vertex_positions()),
+  EXPECT_LT(largest_point_distance(a.vertex_positions(), b.vertex_positions()),
             1e-6 * bounding_box_diagonal(s.mesh));
 }
 
@@ -426,7 +427,7 @@ TEST(HierarchicalSolver, PreparedAtRestTheFirstCycleReusesTheCoarseFactor) {
   const SolveReport a = prepared.solve(o), b = lazy.solve(o);
   ASSERT_TRUE(a.converged && b.converged);
   EXPECT_NEAR(a.energy, b.energy, 1e-6 * b.energy);
-  EXPECT_LT(max_distance(prepared.vertex_positions(), lazy.vertex_positions()),
+  EXPECT_LT(largest_point_distance(prepared.vertex_positions(), lazy.vertex_positions()),
             1e-4 * prepared.prisms().bounding_box_diagonal);
 
   Deformer global(s.mesh, PrismParameters{}, at_rest);
@@ -453,7 +454,8 @@ TEST(HierarchicalSolver, VCycleAndWCycleReachTheSameMinimum) {
       o.hierarchical.coarse_factor_reuse = reuse;
       Deformer d(s.mesh, PrismParameters{}, s.handles);
       const SolveReport r = d.solve(o);
-      const double error = max_distance(d.vertex_positions(), flat.vertex_positions()) / diagonal;
+      const double error =
+          largest_point_distance(d.vertex_positions(), flat.vertex_positions()) / diagonal;
       const GlobalSolverTimings& t = d.hierarchical_solver()->coarse_solver()->timings();
       std::cout << "[ metric   ] spot, " << (cycles == 1 ? "V" : "W") << "-cycle, factor reused "
                 << reuse << "x: " << r.iterations << " cycles, " << t.factorizations
@@ -533,7 +535,7 @@ TEST(HierarchicalSolver, AccelerationCutsCyclesAndKeepsTheMinimum) {
   exact.tolerance = 1e-12;
   flat.solve(exact);
   for (int accelerated : {0, 1})
-    EXPECT_LT(max_distance(result[accelerated], flat.vertex_positions()),
+    EXPECT_LT(largest_point_distance(result[accelerated], flat.vertex_positions()),
               1e-4 * bounding_box_diagonal(s.mesh))
         << (accelerated ? "accelerated" : "plain");
 }
@@ -581,7 +583,8 @@ TEST(HierarchicalSolver, SpringsAndOrientationHandlesReachTheFlatMinimum) {
   const SolveReport r = hier.solve(hierarchical(2000, 1e-10, 150));
   ASSERT_GE(hier.hierarchical_solver()->levels(), 3);
   const double diagonal = bounding_box_diagonal(s.mesh);
-  const double error = max_distance(hier.vertex_positions(), flat.vertex_positions()) / diagonal;
+  const double error =
+      largest_point_distance(hier.vertex_positions(), flat.vertex_positions()) / diagonal;
   std::cout << "[ metric   ] spot with a spring and an orientation handle: " << r.iterations
             << " cycles, energy " << 100 * (r.energy / flat.energy() - 1) << "% off, vertices "
             << error << " of the diagonal\n";
@@ -590,7 +593,8 @@ TEST(HierarchicalSolver, SpringsAndOrientationHandlesReachTheFlatMinimum) {
   // The spring moved the tail: the test would not see a broken spring restriction otherwise.
   Deformer no_spring(s.mesh, PrismParameters{}, s.handles);
   no_spring.solve(g);
-  EXPECT_GT(max_distance(no_spring.vertex_positions(), flat.vertex_positions()), 0.01 * diagonal);
+  EXPECT_GT(largest_point_distance(no_spring.vertex_positions(), flat.vertex_positions()),
+            0.01 * diagonal);
 }
 
 // Spot with its head fixed in position and orientation, and the head's pose at a fraction
@@ -623,7 +627,7 @@ TEST(HierarchicalSolver, DragsRefreshCoarseFactorsInTheBackgroundReproducibly) {
   };
   Deformer first(s.mesh, PrismParameters{}, s.handles), second(s.mesh, PrismParameters{}, s.handles);
   const std::vector<Vec3> a = drag(first), b = drag(second);
-  EXPECT_EQ(max_distance(a, b), 0.0);
+  EXPECT_EQ(largest_point_distance(a, b), 0.0);
   const GlobalSolverTimings& t = first.hierarchical_solver()->coarse_solver()->timings();
   EXPECT_GT(first.hierarchical_solver()->drag_factor_lag(), 0);
   EXPECT_GE(t.background_factorizations, 2);
@@ -638,7 +642,7 @@ TEST(HierarchicalSolver, DragsRefreshCoarseFactorsInTheBackgroundReproducibly) {
   exact.tolerance = 1e-12;
   const SolveReport rf = flat.solve(exact);
   EXPECT_LT(on.energy, rf.energy * (1 + 1e-6));
-  EXPECT_LT(max_distance(first.vertex_positions(), flat.vertex_positions()),
+  EXPECT_LT(largest_point_distance(first.vertex_positions(), flat.vertex_positions()),
             1e-4 * bounding_box_diagonal(s.mesh));
 }
 
@@ -722,7 +726,8 @@ TEST(HierarchicalSolver, ASettleAfterADragKeepsItsCoarseFactorLongerAndTheMinimu
   EXPECT_GE(jump_made, jump_cycles - 3);  // from afar: coarse_factor_reuse
   for (const Deformer* d : {kept.get(), fresh.get(), jumped.get()}) {
     EXPECT_LT(d->energy(), rf.energy * (1 + 1e-6));
-    EXPECT_LT(max_distance(d->vertex_positions(), flat.vertex_positions()), 1e-4 * diagonal);
+    EXPECT_LT(largest_point_distance(d->vertex_positions(), flat.vertex_positions()),
+              1e-4 * diagonal);
   }
 }
 
@@ -741,13 +746,13 @@ TEST(HierarchicalSolver, ShowsTheCoarseCorrectionOncePerCycleWithoutChangingTheR
   o.on_coarse_correction = [&] {
     ++calls;
     const std::vector<Vec3> intermediate = shown.vertex_positions();
-    moved = std::max(moved, max_distance(intermediate, before));
+    moved = std::max(moved, largest_point_distance(intermediate, before));
     before = intermediate;
   };
   const SolveReport report = shown.solve(o);
   EXPECT_EQ(calls, report.iterations);
   EXPECT_GT(moved, 0.0);
-  EXPECT_EQ(max_distance(shown.vertex_positions(), plain.vertex_positions()), 0.0)
+  EXPECT_EQ(largest_point_distance(shown.vertex_positions(), plain.vertex_positions()), 0.0)
       << "reading the state mid-cycle changes nothing";
 }
 

@@ -18,7 +18,6 @@
 #include "test_support.h"
 
 using namespace primo;
-using primo::test::max_distance;
 
 namespace {
 
@@ -393,7 +392,7 @@ TEST(NewtonKrylov, StepsReachTheCyclesMinimumInFewerIterationsAndGlobalNewtonKee
   EXPECT_EQ(cycles.newton_steps, 0);
   EXPECT_LT(2 * with.iterations, cycles.iterations);
   EXPECT_NEAR(with.energy, cycles.energy, 1e-8 * cycles.energy);
-  EXPECT_LT(max_distance(with.vertices, cycles.vertices), 1e-4 * c.diagonal);
+  EXPECT_LT(largest_point_distance(with.vertices, cycles.vertices), 1e-4 * c.diagonal);
   // Global Newton from there (exact steps, direct solves) finds nothing left to lower.
   Deformer polish(c.mesh, PrismParameters{}, c.handles);
   polish.set_face_motions(with.motions);
@@ -405,8 +404,8 @@ TEST(NewtonKrylov, StepsReachTheCyclesMinimumInFewerIterationsAndGlobalNewtonKee
   // diagonal wherever the last iteration happened to stop: the cycles' end 1.9e-5 of it away
   // from the polished minimum, the steps' 0.2-1.2e-5 depending on how their conjugate
   // gradients stop. The steps end at least as near it as the cycles.
-  const double steps_off = max_distance(polish.vertex_positions(), with.vertices),
-               cycles_off = max_distance(polish.vertex_positions(), cycles.vertices);
+  const double steps_off = largest_point_distance(polish.vertex_positions(), with.vertices),
+               cycles_off = largest_point_distance(polish.vertex_positions(), cycles.vertices);
   std::cout << "[ metric   ] from global Newton's polished minimum: the steps' end "
             << steps_off / c.diagonal << ", the cycles' " << cycles_off / c.diagonal
             << " of the diagonal\n";
@@ -503,10 +502,10 @@ TEST(NewtonKrylov, ASolveFromAfarTakesStepsAndTheSettleOfADragTakesThemNearTheMi
   for (const SolveReport* r :
        {&steps.report, &settled.report, &by_cycles.report, &at_once.report, &waiting.report})
     EXPECT_NEAR(r->energy, cycles.report.energy, 1e-7 * cycles.report.energy);
-  EXPECT_LT(max_distance(at_once.vertices, cycles.vertices), 1e-4 * c.diagonal);
-  EXPECT_LT(max_distance(steps.vertices, cycles.vertices), 1e-4 * c.diagonal);
-  EXPECT_LT(max_distance(settled.vertices, cycles.vertices), 1e-4 * c.diagonal);
-  EXPECT_LT(max_distance(by_cycles.vertices, cycles.vertices), 1e-4 * c.diagonal);
+  EXPECT_LT(largest_point_distance(at_once.vertices, cycles.vertices), 1e-4 * c.diagonal);
+  EXPECT_LT(largest_point_distance(steps.vertices, cycles.vertices), 1e-4 * c.diagonal);
+  EXPECT_LT(largest_point_distance(settled.vertices, cycles.vertices), 1e-4 * c.diagonal);
+  EXPECT_LT(largest_point_distance(by_cycles.vertices, cycles.vertices), 1e-4 * c.diagonal);
 }
 
 TEST(NewtonKrylov, ASolveFromAfarStepsOnceOneCycleAtFixedTargetsHasShownItFar) {
@@ -634,7 +633,8 @@ TEST(NewtonKrylov, AnInterruptedSolveStopsInAStepAndSolvesOnToTheSameMinimum) {
     const SolveReport rest = cut.solve(o);
     EXPECT_TRUE(rest.converged) << allowed;
     EXPECT_NEAR(rest.energy, all.energy, 1e-7 * all.energy);
-    EXPECT_LT(max_distance(cut.vertex_positions(), whole.vertex_positions()), 1e-4 * c.diagonal);
+    EXPECT_LT(largest_point_distance(cut.vertex_positions(), whole.vertex_positions()),
+              1e-4 * c.diagonal);
   }
 }
 
@@ -687,7 +687,8 @@ TEST(NewtonKrylov, PinnedAndTurnedHandlesAndSpringsKeepTheirDerivativesAndTheFla
     EXPECT_GT(hier.hierarchical_solver()->timings().newton_krylov_steps, 0);
     const double diagonal = bounding_box_diagonal(s.mesh);
     EXPECT_NEAR(r.energy, flat.energy(), 1e-6 * flat.energy()) << fix_name(head_fix);
-    EXPECT_LT(max_distance(hier.vertex_positions(), flat.vertex_positions()), 1e-4 * diagonal)
+    EXPECT_LT(largest_point_distance(hier.vertex_positions(), flat.vertex_positions()),
+              1e-4 * diagonal)
         << fix_name(head_fix);
   }
 }

@@ -7,6 +7,7 @@
 #include <functional>
 
 #include "primo/deformer.h"
+#include "primo/geometry.h"
 #include "primo/local_solver.h"
 #include "primo/mesh.h"
 #include "primo/parallel.h"
@@ -35,7 +36,7 @@ void expect_same_on_every_thread_count(const std::function<std::vector<Vec3>(int
   }
   for (size_t k = 1; k < results.size(); ++k)
     EXPECT_TRUE(same_bits(results[k], results[0]))
-        << "thread count #" << k << ": " << primo::test::max_distance(results[k], results[0]);
+        << "thread count #" << k << ": " << largest_point_distance(results[k], results[0]);
 }
 
 }  // namespace
@@ -120,11 +121,11 @@ TEST(Parallel, SolvesGiveIdenticalVerticesOnOneTwoThreeAndEightThreads) {
     }
     std::vector<Vec3> rest;
     for (auto v : c.mesh.vertices()) rest.push_back(c.mesh.point(v));
-    ASSERT_GT(primo::test::max_distance(results[0], rest), 0.01 * c.diagonal);
+    ASSERT_GT(largest_point_distance(results[0], rest), 0.01 * c.diagonal);
     for (size_t k = 1; k < results.size(); ++k)
       EXPECT_TRUE(same_bits(results[k], results[0]))
           << (method == SolveMethod::Global ? "global" : "hierarchical") << ", thread count #" << k
-          << ": " << primo::test::max_distance(results[k], results[0]);
+          << ": " << largest_point_distance(results[k], results[0]);
   }
 }
 

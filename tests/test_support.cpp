@@ -184,12 +184,6 @@ BentCylinder bent_cylinder(int segments, int bands, double bend_deg, double twis
   return c;
 }
 
-double max_distance(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
-  double d = 0.0;
-  for (size_t i = 0; i < a.size(); ++i) d = std::max(d, (a[i] - b[i]).norm());
-  return d;
-}
-
 double max_difference(const std::vector<BodyState>& a, const std::vector<BodyState>& b) {
   double d = 0.0;
   for (size_t i = 0; i < a.size(); ++i)

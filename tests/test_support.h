@@ -61,8 +61,6 @@ std::string error_of(const std::function<void()>& action);
 
 namespace primo::test {
 
-// The largest distance between corresponding points of two lists of the same length.
-double max_distance(const std::vector<Vec3>& a, const std::vector<Vec3>& b);
 // The largest difference between corresponding body states: of positions, or of rotation
 // matrices (Frobenius norm).
 double max_difference(const std::vector<BodyState>& a, const std::vector<BodyState>& b);

@@ -30,6 +30,11 @@ double mean_edge_length(const Mesh& mesh);
 // vertices do not count: one far away would change every length scaled by the diagonal).
 double bounding_box_diagonal(const Mesh& mesh);
 
+// The largest distance between corresponding points of two lists of the same length (two
+// poses of one mesh's vertices): how far apart two shapes look. Throws std::invalid_argument
+// when the lengths differ.
+double largest_point_distance(const std::vector<Vec3>& a, const std::vector<Vec3>& b);
+
 // Area-weighted mean of the given faces' centroids.
 Vec3 area_weighted_centroid(const FaceGeometry& faces, const std::vector<int>& face_indices);
 

@@ -282,12 +282,6 @@ JumpRun run_jump(Deformer& deformer, const DragCase& c, const SolveOptions& base
   return run;
 }
 
-double largest_distance(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
-  double worst = 0.0;
-  for (size_t v = 0; v < a.size(); ++v) worst = std::max(worst, (a[v] - b[v]).norm());
-  return worst;
-}
-
 // The reference: a second deformer dragged through the same targets, converged at every
 // checkpoint (warm-started from the previous one), against the drag's recorded meshes. With
 // the drag's states recorded (--lag-settle), each is also solved on where it is.
@@ -313,13 +307,14 @@ std::vector<LagPoint> measure_lag(const DragCase& c, const SolveOptions& base, i
     const SolveReport report = reference.solve(converge);
     const std::vector<Vec3>& dragged = run.checkpoint_positions[i];
     LagPoint point{k, run.frame_energies[size_t(k) - 1], report.energy,
-                   largest_distance(reference.vertex_positions(), dragged) / diagonal,
+                   largest_point_distance(reference.vertex_positions(), dragged) / diagonal,
                    report.iterations};
     if (settler) {
       set_targets(*settler, c, double(k) / frames);
       settler->set_face_motions(run.checkpoint_motions[i]);
       const SolveReport settled = settler->solve(settle);
-      point.settle_distance = largest_distance(settler->vertex_positions(), dragged) / diagonal;
+      point.settle_distance =
+          largest_point_distance(settler->vertex_positions(), dragged) / diagonal;
       point.settle_energy = settled.energy;
       point.settle_iterations = settled.iterations;
     }
@@ -563,14 +558,14 @@ int run_drag_bench(const DragBenchOptions& args) {
       refine.tolerance = kLagReferenceTolerance;
       const SolveReport refined = deformer->solve(refine);
       const std::vector<Vec3> converged_shape = deformer->vertex_positions();
-      const double settle_error = largest_distance(converged_shape, settled_shape) / diagonal;
+      const double settle_error = largest_point_distance(converged_shape, settled_shape) / diagonal;
       std::vector<std::pair<const char*, JumpRun>> jumps;
       if (args.undo_redo)
         for (const auto& [name, s] : {std::pair<const char*, double>{"undo", 0.0}, {"redo", 1.0}})
           jumps.emplace_back(name, run_jump(*deformer, c, base, s));
       deformer.reset();
       const double last_distance =
-          largest_distance(converged_shape, drag.checkpoint_positions.back()) / diagonal;
+          largest_point_distance(converged_shape, drag.checkpoint_positions.back()) / diagonal;
       std::printf("Lag as the artist sees it: the largest vertex distance to the converged shape, "
                   "%% of the bounding-box diagonal\n");
       std::printf(

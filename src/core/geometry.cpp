@@ -1,7 +1,10 @@
 #include "primo/geometry.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
+#include <string>
 
 namespace primo {
 
@@ -57,6 +60,15 @@ double mean_edge_length(const Mesh& mesh) {
   for (auto e : mesh.edges())
     sum += (mesh.point(e.v0()) - mesh.point(e.v1())).norm();
   return sum / double(mesh.n_edges());
+}
+
+double largest_point_distance(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
+  if (a.size() != b.size())
+    throw std::invalid_argument("largest_point_distance: " + std::to_string(a.size()) +
+                                " points against " + std::to_string(b.size()));
+  double largest = 0.0;
+  for (size_t i = 0; i < a.size(); ++i) largest = std::max(largest, (a[i] - b[i]).norm());
+  return largest;
 }
 
 double bounding_box_diagonal(const Mesh& mesh) {
