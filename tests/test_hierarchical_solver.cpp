@@ -11,6 +11,7 @@
 #include <random>
 #include <set>
 
+#include "bench/reach_pose.h"
 #include "primo/deformer.h"
 #include "primo/geometry.h"
 #include "primo/mesh_generators.h"
@@ -766,25 +767,13 @@ TEST(HierarchicalSolver, ADragOfAThinBladeStaysNearItsMinimum) {
   const std::string path = test::shared_path("meshes/sword-quad-dominant.obj");
   if (!test::exists(path)) GTEST_SKIP() << "skipped: " << path << " is not present";
   const Mesh mesh = load_mesh(path);
-  double y_min = INFINITY, y_max = -INFINITY;
-  for (auto v : mesh.vertices()) {
-    y_min = std::min(y_min, double(mesh.point(v).y()));
-    y_max = std::max(y_max, double(mesh.point(v).y()));
-  }
-  const double tenth = 0.1 * (y_max - y_min);
-  const std::vector<int> top =
-      faces_where(mesh, [&](const Vec3& p) { return p.y() > y_max - tenth; });
-  const Vec3 centre = area_weighted_centroid(compute_face_geometry(mesh), top);
-  const Vec3 push(0.0, 0.0, 0.1 * bounding_box_diagonal(mesh));
+  const bench::ReachPose pose = bench::make_reach_pose(mesh, path);
   auto at = [&](double s) {
-    return make_rigid_transform(s * push, Vec3::UnitX(), 30.0 * s, centre);
+    return make_rigid_transform(s * pose.translate, pose.axis, s * pose.angle_deg,
+                                pose.top_centroid);
   };
-  const std::vector<Handle> handles = {
-      {"bottom",
-       faces_where(mesh, [&](const Vec3& p) { return p.y() < y_min + tenth; }),
-       Fix::All,
-       {}},
-      {"top", top, Fix::All, at(0.0)}};
+  std::vector<Handle> handles = pose.handles();
+  handles[1].transform = at(0.0);
 
   SolveOptions frame;
   frame.method = SolveMethod::Hierarchical;
