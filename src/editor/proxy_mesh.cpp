@@ -242,12 +242,12 @@ const ProxyTriangles& ProxyBuild::wait() {
   return *result_;
 }
 
-bool stand_in_waits(bool drawn_in_software, bool editor_settled, bool in_motion) {
-  return !drawn_in_software && !editor_settled && !in_motion;
-}
-
 void ProxyBuild::set_paused(bool paused) {
   signals_.paused.store(paused, std::memory_order_relaxed);
+}
+
+bool stand_in_waits(bool drawn_in_software, bool editor_settled, bool in_motion) {
+  return !drawn_in_software && !editor_settled && !in_motion;
 }
 
 }  // namespace primo::editor
