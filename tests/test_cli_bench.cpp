@@ -265,3 +265,23 @@ TEST(BenchCli, DragOnlyAndSolverSettings) {
   // Two coarse Newton iterations without reuse, so at least two factorizations, per frame.
   EXPECT_GE(d["profile"]["per_frame_ms"]["factorizations"].get<double>(), 2.0);
 }
+
+TEST(BenchCli, DragFramesOfTwoIterationsEndWithANewtonKrylovStep) {
+  // --frame-iterations: as the editor's batch where two iterations fit, each frame is a cycle
+  // and a Newton-Krylov step (HierarchicalOptions::newton_krylov_in_frames); with that off,
+  // two cycles.
+  auto steps_per_frame = [](const std::string& flags) {
+    const std::string json = primo::test::temp_dir() + "/drag_frames.json";
+    const CommandResult r = run_primo(
+        "bench drag " + primo::test::source_path("assets/scenarios/bench/spot-reach.json") +
+        " --frames 4 --drag-only " + flags + " --json " + json);
+    EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
+    const nlohmann::json d = read_json(json);
+    return std::make_pair(d["frame_iterations"].get<int>(),
+                          d["profile"]["per_frame_ms"]["newton_krylov_steps"].get<double>());
+  };
+  EXPECT_EQ(steps_per_frame(""), std::make_pair(1, 0.0));
+  EXPECT_EQ(steps_per_frame("--frame-iterations 2"), std::make_pair(2, 1.0));
+  EXPECT_EQ(steps_per_frame("--frame-iterations 2 --newton-krylov-in-frames 0"),
+            std::make_pair(2, 0.0));
+}

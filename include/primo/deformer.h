@@ -90,6 +90,11 @@ struct SolveOptions {
   // the energy (DragPredictor; 0: from the state as it is). Not across a jump followed in
   // sub-steps (PathOptions). Measured in docs/performance.md.
   double drag_prediction = 1.0;
+  // The solve is a drag's frame: its targets moved with the hand since the last solve (the
+  // editor's batches while a handle is dragged, the drag benchmark's frames). Hierarchical:
+  // given two or more iterations, the second is a Newton-Krylov step
+  // (HierarchicalOptions::newton_krylov_in_frames); not in a jump's sub-steps.
+  bool drag_frame = false;
 };
 
 struct SolveReport {
@@ -224,6 +229,7 @@ class Deformer {
   // The state is the minimum the last solve converged to (no iteration since; a jump from it
   // is an undo or a redo, not a drag's frame), and the hierarchy's coarse factor is of it.
   bool solved_to_minimum_ = false, coarse_factor_of_state_ = false;
+  bool following_path_ = false;  // iterating a jump's sub-step (follow_path), not a frame
   SolveMethod settled_method_ = SolveMethod::Global;
   double settled_tolerance_ = 0.0;
   bool exact_newton_ = false;  // the next global iteration takes an exact-Hessian step

@@ -102,6 +102,14 @@ struct HierarchicalOptions {
   // (docs/performance.md, part 18). 0: cycles there too. A step takes 0.1-0.3 s at 240k
   // faces: the editor interrupts it when a newer request comes (SolveOptions::interrupt).
   double newton_krylov_above = 2e-3;
+  // A drag's frame (SolveOptions::drag_frame) that its caller gives two or more iterations
+  // (the editor gives a batch as many as fit 50 ms) makes the second a Newton-Krylov step
+  // instead of a cycle. One cycle a frame lags the minimum along soft modes, which the step
+  // takes as the cycles cannot: the drag benchmark's last frames ended 0.000-0.016% of the
+  // diagonal from their minima (elephant, armadillo, beetle, skull, koala) instead of
+  // 0.011-5.1%, for 2.5-4 times a cycle's time; two cycles were no closer (docs/performance.md,
+  // part 23).
+  bool newton_krylov_in_frames = true;
   NewtonKrylovOptions newton_krylov;
 };
 
@@ -151,6 +159,7 @@ class HierarchicalSolver {
     krylov_failed_ = false;
     last_decrease_ = 1.0;
     last_was_newton_ = false;
+    frame_step_next_ = false;
     settle_start_decrease_.reset();
   }
 
@@ -174,6 +183,9 @@ class HierarchicalSolver {
   // coarse level must factorize in the foreground (on one thread: about 0.2 s at 240k faces),
   // the steps' structure is built beside it, in parallel, instead of in the first step.
   void set_iterations_ahead(int iterations) { iterations_ahead_ = iterations; }
+  // Whether the coming iterations are a drag's frame (SolveOptions::drag_frame), not a jump's
+  // sub-step or a solve to convergence (HierarchicalOptions::newton_krylov_in_frames).
+  void set_drag_frame(bool drag_frame) { drag_frame_ = drag_frame; }
   bool newton_krylov_ready() const { return newton_krylov_ && newton_krylov_->structure_built(); }
 
  private:
@@ -208,6 +220,9 @@ class HierarchicalSolver {
   int cycles_since_restart_ = 0;
   std::unique_ptr<NewtonKrylov> newton_krylov_;  // made on first use
   int iterations_ahead_ = 1;
+  bool drag_frame_ = false;
+  // The last cycle was a frame's first and its caller meant to run more on the same targets.
+  bool frame_step_next_ = false;
   bool krylov_failed_ = false;    // a step did not lower the energy since the targets moved
   double last_decrease_ = 1.0;    // relative energy decrease of the last iteration
   bool last_was_newton_ = false;  // the last iteration was a Newton-Krylov step

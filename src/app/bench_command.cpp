@@ -76,6 +76,11 @@ Command register_bench(CLI::App& app) {
   drag->add_option("--subdivide", drag_args->subdivide,
                    "Loop-subdivide the (triangle) mesh this many times first")
       ->check(finite_range(0, 4));
+  drag->add_option("--frame-iterations", drag_args->frame_iterations,
+                   "Solver iterations a frame, as the editor's batch where that many fit 50 ms "
+                   "(hierarchical: the second is a Newton-Krylov step)")
+      ->capture_default_str()
+      ->check(finite_range(1, 8));
   drag->add_flag("--bbox-handles", drag_args->bbox_handles,
                  "Ignore the scenario's regions, handles and forces: bottom tenth (y) fixed, top "
                  "tenth turned 30 deg about x and moved a tenth of the diagonal along +z");
@@ -139,6 +144,10 @@ Command register_bench(CLI::App& app) {
                    "Newton-Krylov steps for the whole settle when, once the targets stay put, "
                    "a cycle still lowers the energy by more than this fraction (0: never)")
       ->check(finite_range(0.0, 1.0))
+      ->group(group);
+  drag->add_option("--newton-krylov-in-frames", h.newton_krylov_in_frames,
+                   "A frame of two or more iterations makes its second a Newton-Krylov step "
+                   "(0: cycles only)")
       ->group(group);
   drag->add_option("--krylov-stop-ratio", h.newton_krylov.stop_ratio,
                    "Conjugate gradients of a Newton-Krylov step stop after an iteration that "

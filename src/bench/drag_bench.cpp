@@ -182,7 +182,7 @@ double g_sink = 0.0;  // keeps the vertex read from being optimized away
 
 // The drag on `deformer` (made with the final targets): targets back to rest, then N frames.
 void run_frames(Deformer& deformer, const DragCase& c, const SolveOptions& base, int frames,
-                int lag_every, bool keep_motions, DragRun& run) {
+                int frame_iterations, int lag_every, bool keep_motions, DragRun& run) {
   set_targets(deformer, c, 0.0);  // every handle and force back at rest
   deformer.reset();
   // The editor sets the solver up when the handles are made, before they are dragged.
@@ -192,7 +192,8 @@ void run_frames(Deformer& deformer, const DragCase& c, const SolveOptions& base,
   const SolverClock after_setup = SolverClock::read(deformer);
 
   SolveOptions frame = base;
-  frame.max_iterations = 1;
+  frame.max_iterations = frame_iterations;
+  frame.drag_frame = true;
   frame.tolerance = 0.0;
   for (int k = 1; k <= frames; ++k) {
     const SolverClock before = SolverClock::read(deformer);
@@ -381,6 +382,7 @@ int run_drag_bench(const DragBenchOptions& args) {
   out["build"] = build;
   out["solver"] = solve_method_name(method);
   out["frames"] = args.frames;
+  out["frame_iterations"] = args.frame_iterations;
   out["subdivide"] = args.subdivide;
   out["bbox_handles"] = args.bbox_handles;
   out["drag_prediction"] = args.drag_prediction;
@@ -414,8 +416,9 @@ int run_drag_bench(const DragBenchOptions& args) {
   for (const Handle& h : c.handles)
     std::printf(" %s (%zu faces)", h.name.empty() ? "-" : h.name.c_str(), h.faces.size());
   std::printf("; %zu forces\n", c.forces.size());
-  std::printf("Solver     %s, %d frames of one iteration each, drag prediction %g%s\n",
-              solve_method_name(method), args.frames, args.drag_prediction,
+  std::printf("Solver     %s, %d frames of %d iteration%s each, drag prediction %g%s\n",
+              solve_method_name(method), args.frames, args.frame_iterations,
+              args.frame_iterations == 1 ? "" : "s", args.drag_prediction,
               args.drag_only ? " (--drag-only)" : "");
   SolveOptions base;
   base.method = method;
@@ -440,6 +443,7 @@ int run_drag_bench(const DragBenchOptions& args) {
       args.hierarchical.acceleration_history != defaults.acceleration_history ||
       args.hierarchical.newton_krylov_below != defaults.newton_krylov_below ||
       args.hierarchical.newton_krylov_above != defaults.newton_krylov_above ||
+      args.hierarchical.newton_krylov_in_frames != defaults.newton_krylov_in_frames ||
       args.hierarchical.newton_krylov.stop_ratio != defaults.newton_krylov.stop_ratio ||
       args.hierarchical.newton_krylov.max_turn != defaults.newton_krylov.max_turn;
   const nlohmann::json settings = {
@@ -457,6 +461,7 @@ int run_drag_bench(const DragBenchOptions& args) {
       {"acceleration_history", args.hierarchical.acceleration_history},
       {"newton_krylov_below", args.hierarchical.newton_krylov_below},
       {"newton_krylov_above", args.hierarchical.newton_krylov_above},
+      {"newton_krylov_in_frames", args.hierarchical.newton_krylov_in_frames},
       {"krylov_stop_ratio", args.hierarchical.newton_krylov.stop_ratio},
       {"krylov_max_turn", args.hierarchical.newton_krylov.max_turn},
       {"core_defaults", !tuned}};
@@ -493,8 +498,8 @@ int run_drag_bench(const DragBenchOptions& args) {
     // deformers alive at once would put the run's peak memory at twice the editor's.
     auto deformer = std::make_unique<Deformer>(c.mesh, c.prisms, c.handles, c.forces);
     drag.setup_seconds = seconds_since(start);
-    run_frames(*deformer, c, base, args.frames, args.drag_only ? 0 : args.lag_every,
-               args.lag_settle && !args.drag_only, drag);
+    run_frames(*deformer, c, base, args.frames, args.frame_iterations,
+               args.drag_only ? 0 : args.lag_every, args.lag_settle && !args.drag_only, drag);
 
     const double median_ms = 1e3 * median_of(drag.frame_seconds);
     const double max_ms =

@@ -448,6 +448,7 @@ std::optional<double> Deformer::iterate(const SolveOptions& options, double e,
     hierarchical_->set_coarse_correction_callback(options.on_coarse_correction);
     hierarchical_->set_interrupt(options.interrupt);
     hierarchical_->set_iterations_ahead(options.max_iterations);
+    hierarchical_->set_drag_frame(options.drag_frame && !following_path_);
     const double energy = hierarchical_->cycle(state_, e);
     hierarchical_->set_coarse_correction_callback({});
     hierarchical_->set_interrupt({});
@@ -528,7 +529,9 @@ bool Deformer::follow_path(const SolveOptions& options, SolveReport& report) {
     double e = energy();
     while (path_.step_iterations < options.path.max_step_iterations) {
       if (budget-- <= 0) return false;  // a sub-step counts even when it finds no decrease
+      following_path_ = true;
       const std::optional<double> after = guarded_iterate(options, e, report);
+      following_path_ = false;
       if (report.stop_reason == "not finite") {
         known_energy_.reset();
         path_ = {};

@@ -508,8 +508,14 @@ double HierarchicalSolver::cycle(std::vector<BodyState>& fine_state, double ener
   // This settle started far from the minimum (HierarchicalOptions::newton_krylov_above).
   const bool from_afar = options_.newton_krylov_above > 0.0 && settle_start_decrease_ &&
                          *settle_start_decrease_ > options_.newton_krylov_above;
-  const bool newton = !krylov_failed_ && !confirming &&
-                      (from_afar || (settling && last_decrease_ < options_.newton_krylov_below));
+  // The second iteration of a drag's frame (HierarchicalOptions::newton_krylov_in_frames):
+  // known from the first, whose call said how many it meant to run.
+  const bool frame_step = frame_step_next_ && cycles_since_restart_ == 1;
+  frame_step_next_ = options_.newton_krylov_in_frames && cycles_since_restart_ == 0 &&
+                     iterations_ahead_ >= 2 && drag_frame_;
+  const bool newton =
+      !krylov_failed_ && !confirming &&
+      (frame_step || from_afar || (settling && last_decrease_ < options_.newton_krylov_below));
   if (newton) {
     const auto t = Clock::now();
     if (!newton_krylov_)

@@ -320,6 +320,9 @@ void SolverWorker::step() {
       return stop_ || stop_requested_ || pending_problem_ != nullptr || pending_targets_ != nullptr;
     };
   const int batch = dragging ? chunk_ : std::max(chunk_, kSettleBatch);
+  // Where a batch has room for more than one cycle, a drag's frame takes a Newton-Krylov step
+  // after its cycle (HierarchicalOptions::newton_krylov_in_frames).
+  options.drag_frame = dragging;
   options.max_iterations =
       limited_ ? std::max(0, std::min(batch, problem_->spec.max_iterations - done)) : batch;
   // A jump (undo, typed values, an opened scenario) is followed in sub-steps, a batch at a
