@@ -152,6 +152,26 @@ TEST(Parallel, DragFramesGiveIdenticalVerticesOnOneTwoThreeAndEightThreads) {
   });
 }
 
+TEST(Parallel, DragFramesWithNewtonKrylovStepsGiveIdenticalVerticesOnOneTwoThreeAndEightThreads) {
+  // Frames of two iterations: a cycle and a Newton-Krylov step each
+  // (HierarchicalOptions::newton_krylov_in_frames).
+  const test::BentCylinder c = test::bent_cylinder(96, 200, 0.0);
+  expect_same_on_every_thread_count([&](int threads) {
+    Deformer d(c.mesh, PrismParameters{}, c.handles);
+    SolveOptions o;
+    o.method = SolveMethod::Hierarchical;
+    o.drag_frame = true;
+    o.max_iterations = 2;
+    o.tolerance = 0.0;
+    for (int k = 1; k <= 3; ++k) {
+      d.set_handle_transform(1, test::bent_cylinder(96, 200, 10.0 * k).handles[1].transform);
+      d.solve(o);
+    }
+    EXPECT_EQ(d.hierarchical_solver()->timings().newton_krylov_steps, 3) << threads << " threads";
+    return d.vertex_positions();
+  });
+}
+
 TEST(Parallel, NewtonKrylovStepsGiveIdenticalVerticesOnOneTwoThreeAndEightThreads) {
   // A settling solve: cycles, then Newton-Krylov steps (Hessian blocks by body and pair,
   // multigrid sweeps by parts and colours, dot products in chunks).
