@@ -39,6 +39,16 @@ void expect_same_on_every_thread_count(const std::function<std::vector<Vec3>(int
         << "thread count #" << k << ": " << largest_point_distance(results[k], results[0]);
 }
 
+// A drag's frames of `iterations` hierarchical iterations each.
+SolveOptions drag_frames(int iterations) {
+  SolveOptions o;
+  o.method = SolveMethod::Hierarchical;
+  o.drag_frame = true;
+  o.max_iterations = iterations;
+  o.tolerance = 0.0;
+  return o;
+}
+
 }  // namespace
 
 TEST(Parallel, ChunksDependOnTheSizeAloneAndSumsOnNoThreadCount) {
@@ -137,10 +147,7 @@ TEST(Parallel, DragFramesGiveIdenticalVerticesOnOneTwoThreeAndEightThreads) {
   const test::BentCylinder c = test::bent_cylinder(96, 200, 0.0);
   expect_same_on_every_thread_count([&](int threads) {
     Deformer d(c.mesh, PrismParameters{}, c.handles);
-    SolveOptions o;
-    o.method = SolveMethod::Hierarchical;
-    o.max_iterations = 1;
-    o.tolerance = 0.0;
+    const SolveOptions o = drag_frames(1);
     int predicted = 0;
     for (const RigidTransform& t : frames) {
       d.set_handle_transform(1, t);
@@ -158,11 +165,7 @@ TEST(Parallel, DragFramesWithNewtonKrylovStepsGiveIdenticalVerticesOnOneTwoThree
   const test::BentCylinder c = test::bent_cylinder(96, 200, 0.0);
   expect_same_on_every_thread_count([&](int threads) {
     Deformer d(c.mesh, PrismParameters{}, c.handles);
-    SolveOptions o;
-    o.method = SolveMethod::Hierarchical;
-    o.drag_frame = true;
-    o.max_iterations = 2;
-    o.tolerance = 0.0;
+    const SolveOptions o = drag_frames(2);
     for (int k = 1; k <= 3; ++k) {
       d.set_handle_transform(1, test::bent_cylinder(96, 200, 10.0 * k).handles[1].transform);
       d.solve(o);
