@@ -62,6 +62,41 @@ TEST(SessionReplay, IsDeterministicAndEndsWhereASolveFromRestEnds) {
   EXPECT_FALSE(a.positions == rest_points);
 }
 
+TEST(SessionReplay, FramesThatMoveTheTargetsAreDragFrames) {
+  // With two iterations a frame, a frame whose events moved handles is solved as the editor's
+  // batch while dragging where two fit: a hierarchical cycle and a Newton-Krylov step
+  // (SolveOptions::drag_frame); with one, a cycle.
+  RecordedSession r = record_bar_session("bar.obj");
+  r.session.solver.method = SolverMethod::Hierarchical;
+  std::vector<int> target_frames;  // frames whose only events move targets: no rebuild
+  for (const SessionEvent& e : r.session.events) {
+    const bool targets_only = std::all_of(
+        r.session.events.begin(), r.session.events.end(), [&](const SessionEvent& other) {
+          return other.frame != e.frame || other.type == SessionEvent::Type::Targets;
+        });
+    if (targets_only && (target_frames.empty() || target_frames.back() != e.frame))
+      target_frames.push_back(e.frame);
+  }
+  ASSERT_GE(target_frames.size(), 10u);
+  auto steps_in_target_frames = [&](int iterations_per_frame) {
+    int steps = 0, last = 0;
+    ReplayOptions opt;
+    opt.iterations_per_frame = iterations_per_frame;
+    opt.every = 1;
+    opt.on_frame = [&](int frame, const Deformer& d) {
+      const int now =
+          d.hierarchical_solver() ? d.hierarchical_solver()->timings().newton_krylov_steps : 0;
+      if (std::find(target_frames.begin(), target_frames.end(), frame) != target_frames.end())
+        steps += now - last;
+      last = now;
+    };
+    EXPECT_TRUE(replay_session(r.session, r.mesh, opt).converged);
+    return steps;
+  };
+  EXPECT_EQ(steps_in_target_frames(1), 0);
+  EXPECT_EQ(steps_in_target_frames(2), int(target_frames.size()));
+}
+
 // --- primo replay ------------------------------------------------------------------------
 
 namespace {

@@ -6,7 +6,8 @@
 // the state; when the structure changed (handles created/deleted/re-moded, factors or prism
 // settings) the Deformer is rebuilt keeping the current face motions (as the editor's solver
 // thread does), otherwise the new handle targets are set; then `iterations_per_frame` solver
-// iterations run, warm-started (skipped once converged and nothing changed since). After the
+// iterations run, warm-started (skipped once converged and nothing changed since), as a drag's
+// frame when the frame's events changed anything (SolveOptions::drag_frame). After the
 // last frame the state is settled: solves up to the session's solver.max_iterations until the
 // tolerance is met, confirmed by one more solve (as the editor's settle), so the final mesh is
 // the converged pose the editor shows at the end of the session.

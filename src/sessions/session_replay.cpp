@@ -28,11 +28,13 @@ void set_targets(Deformer& d, const SessionState& state) {
       d.set_force_offset(int(f), in.forces[f].target_offset);
 }
 
-SolveOptions options_for(const SolverSpec& spec, int n_faces, int max_iterations) {
+SolveOptions options_for(const SolverSpec& spec, int n_faces, int max_iterations,
+                         bool drag_frame = false) {
   SolveOptions o;
   o.method = scenario_solve_method(spec.method, size_t(n_faces));  // as the editor solves
   o.tolerance = spec.tolerance;
   o.max_iterations = max_iterations;
+  o.drag_frame = drag_frame;
   return o;
 }
 
@@ -71,11 +73,14 @@ ReplayResult replay_session(const Session& session, const Mesh& mesh, const Repl
       set_targets(*d, state);
       converged = false;
     }
-    if (!(before == state)) idle_iterations = 0;
+    const bool moved = !(before == state);
+    if (moved) idle_iterations = 0;
     if (!converged && idle_iterations < session.solver.max_iterations &&
         opt.iterations_per_frame > 0) {
+      // A frame whose events moved the targets is solved as the editor's batch while dragging
+      // (SolveOptions::drag_frame: with two iterations or more, a cycle and a Newton-Krylov step).
       const SolveReport rep =
-          d->solve(options_for(session.solver, n_faces, opt.iterations_per_frame));
+          d->solve(options_for(session.solver, n_faces, opt.iterations_per_frame, moved));
       r.iterations += rep.iterations;
       idle_iterations += std::max(rep.iterations, 1);
       converged = rep.converged && rep.stop_reason == "tolerance";
