@@ -21,9 +21,9 @@ namespace primo::bench {
 struct DragBenchOptions {
   std::string scenario;
   int frames = 60;
-  // Solver iterations a frame: the editor gives a drag's batch as many as fit 50 ms (one at
-  // 100k faces and more on this 2-core machine; more on faster ones). From two on, the second
-  // is a Newton-Krylov step (HierarchicalOptions::newton_krylov_in_frames).
+  // Solver iterations a frame: the editor gives a drag's batch as many as fit 50 ms (on this
+  // 2-core machine one from about 40,000 faces up; more on faster ones). From two on, the
+  // second is a Newton-Krylov step (HierarchicalOptions::newton_krylov_in_frames).
   int frame_iterations = 1;
   std::string solver = "hierarchical";  // "hierarchical", "global" or "local"
   std::string json;

@@ -77,7 +77,7 @@ ReplayResult replay_session(const Session& session, const Mesh& mesh, const Repl
     if (moved) idle_iterations = 0;
     if (!converged && idle_iterations < session.solver.max_iterations &&
         opt.iterations_per_frame > 0) {
-      // A frame whose events moved the targets is solved as the editor's batch while dragging
+      // A frame whose events changed anything is solved as the editor's batch while dragging
       // (SolveOptions::drag_frame: with two iterations or more, a cycle and a Newton-Krylov step).
       const SolveReport rep =
           d->solve(options_for(session.solver, n_faces, opt.iterations_per_frame, moved));
