@@ -65,22 +65,22 @@ ReplayResult replay_session(const Session& session, const Mesh& mesh, const Repl
     const SessionState before = state;
     while (next < session.events.size() && session.events[next].frame == frame)
       apply_event(state, session.events[next++], n_faces);
+    const bool changed = !(before == state);
     if (!same_solver_structure(before, state)) {
       d = build(mesh, state, d.get());
       ++r.rebuilds;
       converged = false;
-    } else if (!(before == state)) {
+    } else if (changed) {
       set_targets(*d, state);
       converged = false;
     }
-    const bool moved = !(before == state);
-    if (moved) idle_iterations = 0;
+    if (changed) idle_iterations = 0;
     if (!converged && idle_iterations < session.solver.max_iterations &&
         opt.iterations_per_frame > 0) {
       // A frame whose events changed anything is solved as the editor's batch while dragging
       // (SolveOptions::drag_frame: with two iterations or more, a cycle and a Newton-Krylov step).
       const SolveReport rep =
-          d->solve(options_for(session.solver, n_faces, opt.iterations_per_frame, moved));
+          d->solve(options_for(session.solver, n_faces, opt.iterations_per_frame, changed));
       r.iterations += rep.iterations;
       idle_iterations += std::max(rep.iterations, 1);
       converged = rep.converged && rep.stop_reason == "tolerance";
