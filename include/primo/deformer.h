@@ -229,7 +229,6 @@ class Deformer {
   // The state is the minimum the last solve converged to (no iteration since; a jump from it
   // is an undo or a redo, not a drag's frame), and the hierarchy's coarse factor is of it.
   bool solved_to_minimum_ = false, coarse_factor_of_state_ = false;
-  bool following_path_ = false;  // iterating a jump's sub-step (follow_path), not a frame
   SolveMethod settled_method_ = SolveMethod::Global;
   double settled_tolerance_ = 0.0;
   bool exact_newton_ = false;  // the next global iteration takes an exact-Hessian step

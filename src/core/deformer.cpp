@@ -448,7 +448,7 @@ std::optional<double> Deformer::iterate(const SolveOptions& options, double e,
     hierarchical_->set_coarse_correction_callback(options.on_coarse_correction);
     hierarchical_->set_interrupt(options.interrupt);
     hierarchical_->set_iterations_ahead(options.max_iterations);
-    hierarchical_->set_drag_frame(options.drag_frame && !following_path_);
+    hierarchical_->set_drag_frame(options.drag_frame);
     const double energy = hierarchical_->cycle(state_, e);
     hierarchical_->set_coarse_correction_callback({});
     hierarchical_->set_interrupt({});
@@ -498,6 +498,9 @@ bool Deformer::follow_path(const SolveOptions& options, SolveReport& report) {
   const std::vector<RigidTransform> from = solved_transforms_;
   const std::vector<Vec3> from_offsets = solved_offsets_;
   int budget = options.path.max_iterations;
+  // A sub-step is no drag's frame (SolveOptions::drag_frame): it ends on a small decrease.
+  SolveOptions sub_step = options;
+  sub_step.drag_frame = false;
   // The sub-steps are the frames of a drag at a steady pace: each starts from the state
   // carried on by the last one's change (DragPredictor), from the second on.
   const std::vector<double> step_move{1.0};  // equal sub-steps
@@ -529,9 +532,7 @@ bool Deformer::follow_path(const SolveOptions& options, SolveReport& report) {
     double e = energy();
     while (path_.step_iterations < options.path.max_step_iterations) {
       if (budget-- <= 0) return false;  // a sub-step counts even when it finds no decrease
-      following_path_ = true;
-      const std::optional<double> after = guarded_iterate(options, e, report);
-      following_path_ = false;
+      const std::optional<double> after = guarded_iterate(sub_step, e, report);
       if (report.stop_reason == "not finite") {
         known_energy_.reset();
         path_ = {};
