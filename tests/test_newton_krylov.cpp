@@ -577,6 +577,28 @@ TEST(NewtonKrylov, ADragFrameOfTwoIterationsEndsWithAStepAndFollowsTheMinimum) {
   EXPECT_EQ(jumped.hierarchical_solver()->timings().newton_krylov_steps, 1);
 }
 
+TEST(NewtonKrylov, AFrameCutAfterItsCycleLeavesNoStepToTheNextSolve) {
+  // A frame of two iterations stopped after its cycle (here by its interrupt; in the editor a
+  // stop on the tolerance): the next solve, no frame, starts with a cycle as before.
+  const test::BentCylinder c = test::bent_cylinder(40, 60, 30.0, 10.0);
+  Deformer d(c.mesh, PrismParameters{}, test::bent_cylinder(40, 60, 0.0, 0.0).handles);
+  SolveOptions frame = hierarchical_to_convergence();
+  frame.drag_frame = true;
+  frame.max_iterations = 2;
+  frame.tolerance = 0.0;
+  int asked = 0;
+  frame.interrupt = [&] { return ++asked > 1; };  // before the second iteration
+  d.set_handle_transform(1, c.handles[1].transform);
+  const SolveReport cut = d.solve(frame);
+  EXPECT_EQ(cut.iterations, 1);
+  EXPECT_EQ(cut.stop_reason, "interrupted");
+  SolveOptions next = hierarchical_to_convergence();
+  next.max_iterations = 1;
+  next.tolerance = 0.0;
+  d.solve(next);
+  EXPECT_EQ(d.hierarchical_solver()->timings().newton_krylov_steps, 0);
+}
+
 TEST(NewtonKrylov, ASolveFromAfarStepsOnceOneCycleAtFixedTargetsHasShownItFar) {
   // The first cycle after the targets move is a drag's frame; the next one, the first at fixed
   // targets, tells a solve from afar (it lowers the energy by 0.1-0.6 of it on the bench's

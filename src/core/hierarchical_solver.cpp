@@ -509,8 +509,9 @@ double HierarchicalSolver::cycle(std::vector<BodyState>& fine_state, double ener
   const bool from_afar = options_.newton_krylov_above > 0.0 && settle_start_decrease_ &&
                          *settle_start_decrease_ > options_.newton_krylov_above;
   // The second iteration of a drag's frame (HierarchicalOptions::newton_krylov_in_frames):
-  // known from the first, whose call said how many it meant to run.
-  const bool frame_step = frame_step_next_ && cycles_since_restart_ == 1;
+  // known from the first, whose call said how many it meant to run; not when that call
+  // stopped after its cycle and this is another's, no frame.
+  const bool frame_step = frame_step_next_ && drag_frame_ && cycles_since_restart_ == 1;
   frame_step_next_ = options_.newton_krylov_in_frames && cycles_since_restart_ == 0 &&
                      iterations_ahead_ >= 2 && drag_frame_;
   const bool newton =
