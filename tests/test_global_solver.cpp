@@ -168,6 +168,9 @@ TEST(GlobalSolver, AReusedFactorsStepIsHalvedOnlyAsOftenAsAllowed) {
   EXPECT_EQ(whole_factorizations[first_cut], 2);
   EXPECT_TRUE(fresh.decreased);
   EXPECT_LT(fresh.energy_after, cut[first_cut].energy_after);
-  for (const GlobalStep& s : whole)
-    if (s.reused_factorization) EXPECT_EQ(s.step_scale, 1.0);
+  for (const GlobalStep& s : whole) {
+    if (s.reused_factorization) {
+      EXPECT_EQ(s.step_scale, 1.0);
+    }
+  }
 }
