@@ -39,6 +39,14 @@ void expect_same_on_every_thread_count(const std::function<std::vector<Vec3>(int
         << "thread count #" << k << ": " << largest_point_distance(results[k], results[0]);
 }
 
+// The top's targets of a drag bending the 96 x 200 cylinder by 10 degrees a frame.
+std::vector<RigidTransform> bend_frames(int frames) {
+  std::vector<RigidTransform> targets;
+  for (int k = 1; k <= frames; ++k)
+    targets.push_back(test::bent_cylinder(96, 200, 10.0 * k).handles[1].transform);
+  return targets;
+}
+
 // A drag's frames of `iterations` hierarchical iterations each.
 SolveOptions drag_frames(int iterations) {
   SolveOptions o;
@@ -141,9 +149,7 @@ TEST(Parallel, SolvesGiveIdenticalVerticesOnOneTwoThreeAndEightThreads) {
 
 TEST(Parallel, DragFramesGiveIdenticalVerticesOnOneTwoThreeAndEightThreads) {
   // The frames of a drag add the prediction's passes (drag_predictor.h) to the cycles.
-  std::vector<RigidTransform> frames;
-  for (int k = 1; k <= 4; ++k)
-    frames.push_back(test::bent_cylinder(96, 200, 10.0 * k).handles[1].transform);
+  const std::vector<RigidTransform> frames = bend_frames(4);
   const test::BentCylinder c = test::bent_cylinder(96, 200, 0.0);
   expect_same_on_every_thread_count([&](int threads) {
     Deformer d(c.mesh, PrismParameters{}, c.handles);
@@ -162,12 +168,13 @@ TEST(Parallel, DragFramesGiveIdenticalVerticesOnOneTwoThreeAndEightThreads) {
 TEST(Parallel, DragFramesWithNewtonKrylovStepsGiveIdenticalVerticesOnOneTwoThreeAndEightThreads) {
   // Frames of two iterations: a cycle and a Newton-Krylov step each
   // (HierarchicalOptions::newton_krylov_in_frames).
+  const std::vector<RigidTransform> frames = bend_frames(3);
   const test::BentCylinder c = test::bent_cylinder(96, 200, 0.0);
   expect_same_on_every_thread_count([&](int threads) {
     Deformer d(c.mesh, PrismParameters{}, c.handles);
     const SolveOptions o = drag_frames(2);
-    for (int k = 1; k <= 3; ++k) {
-      d.set_handle_transform(1, test::bent_cylinder(96, 200, 10.0 * k).handles[1].transform);
+    for (const RigidTransform& t : frames) {
+      d.set_handle_transform(1, t);
       d.solve(o);
     }
     EXPECT_EQ(d.hierarchical_solver()->timings().newton_krylov_steps, 3) << threads << " threads";
