@@ -123,7 +123,8 @@ TEST(PrismLayer, EnergyMatchesTheSixteenTermFormula) {
     m.translation = Vec3(n(rng), n(rng), n(rng));
   }
   d.set_face_motions(motions);
-  const PrismLayer& layer = d.prisms();
+  const PrismLayer& layer = d.prisms();  // in the solver's numbering
+  motions = d.order().faces_to_solver(motions);
   double expected = 0.0;
   for (const Joint& j : layer.joints) {
     PatchCorners diff;

@@ -8,6 +8,7 @@
 #include "primo/bilinear_inner_product.h"
 #include "primo/constraints.h"
 #include "primo/mesh.h"
+#include "primo/mesh_order.h"
 
 namespace primo {
 
@@ -55,7 +56,9 @@ struct PrismLayer {
 
 // Builds the layer. `params.face_*_factor` may be empty (all 1). Throws Error naming the face
 // and vertex when a blended extrusion direction has zero length, and when the parameters are
-// not finite or the factors have the wrong size.
-PrismLayer build_prism_layer(const Mesh& mesh, const PrismParameters& params);
+// not finite or the factors have the wrong size. When `mesh` is a file's mesh renumbered by
+// `order` (the solver's numbering), errors name the file's face and vertex.
+PrismLayer build_prism_layer(const Mesh& mesh, const PrismParameters& params,
+                             const MeshOrder* order = nullptr);
 
 }  // namespace primo

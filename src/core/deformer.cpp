@@ -8,6 +8,7 @@
 
 #include "primo/error.h"
 #include "primo/local_solver.h"
+#include "primo/mesh_order.h"
 
 namespace primo {
 namespace {
@@ -67,15 +68,32 @@ int path_steps(const std::vector<double>& move) {
   return std::isfinite(steps) ? int(std::min(std::ceil(steps - 1e-9), double(kMaxPathSteps))) : 1;
 }
 
+// The prism layer of `mesh` in the solver's numbering `order`; in the file's own numbering,
+// with `order` set to it, when OpenMesh cannot rebuild the mesh renumbered (the layer is then
+// as good, only slower to sweep).
+PrismLayer solver_layer(const Mesh& mesh, const PrismParameters& params, MeshOrder& order) {
+  Mesh renumbered;
+  if (!build_reordered_mesh(mesh, order, renumbered)) {
+    order = identity_order(mesh);
+    return build_prism_layer(mesh, params);
+  }
+  PrismParameters solver_params = params;
+  for (std::vector<double>* factors : {&solver_params.face_height_factor, &solver_params.face_width_factor})
+    if (factors->size() == mesh.n_faces()) *factors = order.faces_to_solver(*factors);
+  return build_prism_layer(renumbered, solver_params, &order);
+}
+
 }  // namespace
 
 Deformer::Deformer(const Mesh& mesh, const PrismParameters& params, std::vector<Handle> handles,
                    std::vector<Force> forces)
-    : layer_(build_prism_layer(mesh, params)),
+    : order_(locality_order(mesh)),
+      layer_(solver_layer(mesh, params, order_)),
       handles_(std::move(handles)),
       forces_(std::move(forces)) {
   rest_points_.reserve(mesh.n_vertices());
-  for (auto v : mesh.vertices()) rest_points_.push_back(mesh.point(v));
+  for (int v : order_.vertex_of) rest_points_.push_back(mesh.point(mesh.vertex_handle(v)));
+  const std::vector<int> solver_face = order_.solver_faces();
 
   const int n_faces = layer_.n_faces();
   std::vector<int> face_body(n_faces, -1);
@@ -86,11 +104,12 @@ Deformer::Deformer(const Mesh& mesh, const PrismParameters& params, std::vector<
       if (f < 0 || f >= n_faces)
         throw Error(handle_label(handles_[h], h) + ": face " + std::to_string(f) +
                     " is out of range (the mesh has " + std::to_string(n_faces) + " faces)");
-      if (face_body[f] >= 0)
+      const int owner = face_body[size_t(solver_face[size_t(f)])];
+      if (owner >= 0)
         throw Error("face " + std::to_string(f) + " is in both " +
-                    handle_label(handles_[face_body[f]], face_body[f]) + " and " +
+                    handle_label(handles_[size_t(owner)], size_t(owner)) + " and " +
                     handle_label(handles_[h], h));
-      face_body[f] = int(h);
+      face_body[size_t(solver_face[size_t(f)])] = int(h);
     }
     check_transform(handles_[h], h, handles_[h].transform);
     kinds.push_back(body_kind(handles_[h].fix));
@@ -106,15 +125,25 @@ Deformer::Deformer(const Mesh& mesh, const PrismParameters& params, std::vector<
       throw Error("forces[" + std::to_string(i) + "]: the target offset or stiffness is not finite "
                   "and non-negative");
   }
-  for (size_t i = 0; i < forces_.size(); ++i)
-    for (int f : forces_[i].faces)
+  for (size_t i = 0; i < forces_.size(); ++i) {
+    force_faces_.emplace_back();
+    for (int f : forces_[i].faces) {
       if (f < 0 || f >= n_faces)
         throw Error("forces[" + std::to_string(i) + "]: face " + std::to_string(f) +
                     " is out of range");
+      force_faces_.back().push_back(solver_face[size_t(f)]);
+    }
+    // In the solver's order, so that the area sums come out the same for any file order.
+    std::sort(force_faces_.back().begin(), force_faces_.back().end());
+  }
 
   system_ = build_rigid_system(layer_, face_body, kinds, {});
   body_center_.reserve(system_.bodies.size());
   for (const RigidSystem::Body& body : system_.bodies) body_center_.push_back(body.rest_center);
+  corner_body_.resize(layer_.corner_vertex.size());
+  for (int f = 0; f < n_faces; ++f)
+    for (int k = layer_.corner_begin[f]; k < layer_.corner_begin[f + 1]; ++k)
+      corner_body_[size_t(k)] = system_.face_body[size_t(f)];
   rebuild_springs();
   reset();
 }
@@ -130,12 +159,15 @@ void Deformer::problem_changed() {
 // The global solver refers to system_, whose address changes with a move: drop it, it is
 // rebuilt (with its symbolic analysis) on the next global iteration.
 Deformer::Deformer(Deformer&& other) noexcept
-    : rest_points_(std::move(other.rest_points_)),
+    : order_(std::move(other.order_)),
+      rest_points_(std::move(other.rest_points_)),
       layer_(std::move(other.layer_)),
       handles_(std::move(other.handles_)),
       forces_(std::move(other.forces_)),
+      force_faces_(std::move(other.force_faces_)),
       system_(std::move(other.system_)),
       body_center_(std::move(other.body_center_)),
+      corner_body_(std::move(other.corner_body_)),
       state_(std::move(other.state_)),
       settled_(other.settled_),
       solved_to_minimum_(other.solved_to_minimum_),
@@ -150,12 +182,15 @@ Deformer::Deformer(Deformer&& other) noexcept
 }
 
 Deformer& Deformer::operator=(Deformer&& other) noexcept {
+  order_ = std::move(other.order_);
   rest_points_ = std::move(other.rest_points_);
   layer_ = std::move(other.layer_);
   handles_ = std::move(other.handles_);
   forces_ = std::move(other.forces_);
+  force_faces_ = std::move(other.force_faces_);
   system_ = std::move(other.system_);
   body_center_ = std::move(other.body_center_);
+  corner_body_ = std::move(other.corner_body_);
   state_ = std::move(other.state_);
   settled_ = other.settled_;
   settled_method_ = other.settled_method_;
@@ -186,9 +221,9 @@ void Deformer::place_springs(const std::vector<Vec3>& offsets) {
   for (size_t i = 0; i < forces_.size(); ++i) {
     const Force& force = forces_[i];
     double total_area = 0.0;
-    for (int f : force.faces) total_area += layer_.face_area[f];
+    for (int f : force_faces_[i]) total_area += layer_.face_area[f];
     if (!(total_area > 0.0)) continue;
-    for (int f : force.faces)
+    for (int f : force_faces_[i])
       springs.push_back({f, layer_.face_centroid[f] + offsets[i],
                          force.stiffness * layer_.face_area[f] / total_area});
   }
@@ -584,32 +619,34 @@ void Deformer::prepare(const SolveOptions& options) {
 }
 
 std::vector<Vec3> Deformer::vertex_positions() const {
-  // Each corner where its prism puts it, then each vertex the mean of its corners, added in
-  // corner order: both loops in parallel, with the sums of a serial scatter over the faces.
-  std::vector<Vec3> corner(layer_.corner_point.size());
-  parallel_chunks(size_t(layer_.n_faces()), kParallelGrain, [&](size_t begin, size_t end) {
-    for (int f = int(begin); f < int(end); ++f) {
-      const int b = system_.face_body[f];
-      const BodyState& s = state_[b];
-      const Vec3& center = body_center_[size_t(b)];
-      for (int k = layer_.corner_begin[f]; k < layer_.corner_begin[f + 1]; ++k)
-        corner[k] = s.rotation * (layer_.corner_point[k] - center) + s.position;
-    }
-  });
-  std::vector<Vec3> points(rest_points_.size());
+  std::vector<Vec3> points;
+  vertex_positions(points);
+  return points;
+}
+
+void Deformer::vertex_positions(std::vector<Vec3>& points) const {
+  // Each vertex the mean of its corners where their prisms put them, added in corner order,
+  // gathered per vertex in parallel: no buffer of corners (at a million faces 69 MB, which
+  // the allocator maps afresh and the kernel faults in on every call).
+  points.resize(rest_points_.size());
   parallel_chunks(points.size(), kParallelGrain, [&](size_t begin, size_t end) {
     for (size_t v = begin; v < end; ++v) {
       const int first = layer_.vertex_corner_begin[v], last = layer_.vertex_corner_begin[v + 1];
+      Vec3& out = points[size_t(order_.vertex_of[v])];
       if (first == last) {
-        points[v] = rest_points_[v];
+        out = rest_points_[v];
         continue;
       }
       Vec3 sum = Vec3::Zero();
-      for (int i = first; i < last; ++i) sum += corner[size_t(layer_.vertex_corners[size_t(i)])];
-      points[v] = sum / double(last - first);
+      for (int i = first; i < last; ++i) {
+        const int k = layer_.vertex_corners[size_t(i)];
+        const int b = corner_body_[size_t(k)];
+        const BodyState& s = state_[size_t(b)];
+        sum += Vec3(s.rotation * (layer_.corner_point[size_t(k)] - body_center_[size_t(b)]) + s.position);
+      }
+      out = sum / double(last - first);
     }
   });
-  return points;
 }
 
 Mesh Deformer::deformed_mesh(const Mesh& mesh) const {
@@ -624,8 +661,9 @@ std::vector<RigidTransform> Deformer::face_motions() const {
   for (int f = 0; f < layer_.n_faces(); ++f) {
     const int b = system_.face_body[f];
     const BodyState& s = state_[b];
-    motions[f].rotation = s.rotation;
-    motions[f].translation = s.position - s.rotation * body_center_[size_t(b)];
+    RigidTransform& m = motions[size_t(order_.face_of[size_t(f)])];
+    m.rotation = s.rotation;
+    m.translation = s.position - s.rotation * body_center_[size_t(b)];
   }
   return motions;
 }
@@ -643,7 +681,7 @@ void Deformer::set_face_motions(const std::vector<RigidTransform>& motions) {
   exact_newton_ = false;
   for (int b = 0; b < system_.n_bodies(); ++b) {
     const RigidSystem::Body& body = system_.bodies[b];
-    const RigidTransform& m = motions[body.faces.front()];
+    const RigidTransform& m = motions[size_t(order_.face_of[size_t(body.faces.front())])];
     const BodyState given{m.rotation, m.apply(body.rest_center)};
     if (b >= int(handles_.size())) {
       state_[b] = given;

@@ -36,8 +36,13 @@ void check_parameters(const Mesh& mesh, const PrismParameters& p) {
 
 }  // namespace
 
-PrismLayer build_prism_layer(const Mesh& mesh, const PrismParameters& params) {
+PrismLayer build_prism_layer(const Mesh& mesh, const PrismParameters& params, const MeshOrder* order) {
   check_parameters(mesh, params);
+  // "face F, vertex V" in the numbering of the file the user has.
+  auto corner_name = [&](int face, int vertex) {
+    if (order) face = order->face_of[size_t(face)], vertex = order->vertex_of[size_t(vertex)];
+    return "face " + std::to_string(face) + ", vertex " + std::to_string(vertex);
+  };
   const FaceGeometry geometry = compute_face_geometry(mesh);
   const std::vector<Vec3> vertex_normal = compute_vertex_normals(mesh, geometry);
 
@@ -72,11 +77,11 @@ PrismLayer build_prism_layer(const Mesh& mesh, const PrismParameters& params) {
       const Vec3 blended = (1.0 - beta) * vertex_normal[v.idx()] + beta * geometry.normal[i];
       const double len = blended.norm();
       if (!std::isfinite(len))
-        throw Error("face " + std::to_string(i) + ", vertex " + std::to_string(v.idx()) +
+        throw Error(corner_name(i, v.idx()) +
                     ": the blended extrusion direction is not finite (normal_blend " +
                     std::to_string(beta) + " is too large)");
       if (!(len > 0.0))
-        throw Error("face " + std::to_string(i) + ", vertex " + std::to_string(v.idx()) +
+        throw Error(corner_name(i, v.idx()) +
                     ": the blended extrusion direction has zero length (normal_blend " +
                     std::to_string(beta) + ")");
       layer.corner_vertex.push_back(v.idx());
@@ -84,7 +89,7 @@ PrismLayer build_prism_layer(const Mesh& mesh, const PrismParameters& params) {
       layer.corner_offset.push_back(vertex_height[v.idx()] / len * blended);
       // Products of finite settings can still overflow (a height or width of 1e300).
       if (!layer.corner_point.back().allFinite() || !layer.corner_offset.back().allFinite())
-        throw Error("face " + std::to_string(i) + ", vertex " + std::to_string(v.idx()) +
+        throw Error(corner_name(i, v.idx()) +
                     ": the prism corner is not finite (prism height or width too large)");
     }
     layer.corner_begin.push_back(int(layer.corner_vertex.size()));

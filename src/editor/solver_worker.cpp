@@ -415,26 +415,38 @@ void SolverWorker::publish_geometry(bool with_motions) {
   compute_vertex_normals(*problem_->topology, g->positions, g->render_normals);
 
   if (energy_on_ || prisms_on_) {
-    const std::vector<RigidTransform> motions = deformer_->face_motions();
+    // The prisms in the solver's numbering (Deformer::order), drawn in the file's.
+    const MeshOrder& order = deformer_->order();
+    const std::vector<RigidTransform> motions = order.faces_to_solver(deformer_->face_motions());
     const PrismLayer& layer = deformer_->prisms();
     if (energy_on_) {
       const std::vector<double> e = face_joint_energy(layer, motions);
       g->face_energy.resize(e.size());
       for (size_t f = 0; f < e.size(); ++f)
-        g->face_energy[f] = float(layer.face_area[f] > 0 ? e[f] / layer.face_area[f] : 0.0);
+        g->face_energy[size_t(order.face_of[f])] =
+            float(layer.face_area[f] > 0 ? e[f] / layer.face_area[f] : 0.0);
       g->energy_scale = robust_maximum(g->face_energy);
     }
     if (prisms_on_) {
-      g->prism_corners.resize(6 * layer.corner_point.size());
+      std::vector<int> file_corner_begin(size_t(layer.n_faces()) + 1, 0);
       for (int f = 0; f < layer.n_faces(); ++f)
-        for (int k = layer.corner_begin[f]; k < layer.corner_begin[f + 1]; ++k) {
-          const Vec3 bottom = motions[f].apply(layer.corner_point[k] - layer.corner_offset[k]);
-          const Vec3 top = motions[f].apply(layer.corner_point[k] + layer.corner_offset[k]);
+        file_corner_begin[size_t(order.face_of[size_t(f)]) + 1] = layer.degree(f);
+      for (int f = 0; f < layer.n_faces(); ++f)
+        file_corner_begin[size_t(f) + 1] += file_corner_begin[size_t(f)];
+      g->prism_corners.resize(6 * layer.corner_point.size());
+      for (int f = 0; f < layer.n_faces(); ++f) {
+        const int n = layer.degree(f), first = file_corner_begin[size_t(order.face_of[size_t(f)])];
+        for (int j = 0; j < n; ++j) {
+          const int k = layer.corner_begin[f] + j;
+          const size_t file_corner = size_t(first + (j + order.face_rotation[size_t(f)]) % n);
+          const Vec3 bottom = motions[size_t(f)].apply(layer.corner_point[k] - layer.corner_offset[k]);
+          const Vec3 top = motions[size_t(f)].apply(layer.corner_point[k] + layer.corner_offset[k]);
           for (int i = 0; i < 3; ++i) {
-            g->prism_corners[6 * size_t(k) + i] = float(bottom[i]);
-            g->prism_corners[6 * size_t(k) + 3 + i] = float(top[i]);
+            g->prism_corners[6 * file_corner + size_t(i)] = float(bottom[i]);
+            g->prism_corners[6 * file_corner + 3 + size_t(i)] = float(top[i]);
           }
         }
+      }
     }
   }
   {
