@@ -285,3 +285,68 @@ TEST(BenchCli, DragFramesOfTwoIterationsEndWithANewtonKrylovStep) {
   EXPECT_EQ(steps_per_frame("--frame-iterations 2 --newton-krylov-in-frames 0"),
             std::make_pair(2, 0.0));
 }
+
+TEST(BenchCli, DragOnARenumberedCopyReachesTheSameShape) {
+  const std::string dir = primo::test::temp_dir();
+  ASSERT_EQ(run_primo("generate cylinder --segments 8 --bands 6 --triangles -o " + dir + "/tube.obj").exit_code, 0);
+  const std::string scenario = primo::test::source_path("assets/scenarios/bar-bend.json");
+  const std::string common = "bench drag " + scenario + " --mesh " + dir +
+                             "/tube.obj --subdivide 1 --bbox-handles --frames 3 --drag-only --json ";
+  const CommandResult file = run_primo(common + dir + "/file.json");
+  const CommandResult shuffled = run_primo(common + dir + "/shuffled.json --shuffle 5");
+  ASSERT_EQ(file.exit_code, 0) << file.out << file.err;
+  ASSERT_EQ(shuffled.exit_code, 0) << shuffled.out << shuffled.err;
+  EXPECT_NE(shuffled.out.find("renumbered at random (seed 5)"), std::string::npos) << shuffled.out;
+  const nlohmann::json a = read_json(dir + "/file.json"), b = read_json(dir + "/shuffled.json");
+  EXPECT_EQ(b["shuffle"].get<int>(), 5);
+  EXPECT_EQ(a["faces"].get<int>(), b["faces"].get<int>());
+  // The solver numbers both alike: only the selection's sums, made in each file's order,
+  // differ in their last bits.
+  for (size_t k = 0; k < a["frame_energies"].size(); ++k)
+    EXPECT_NEAR(b["frame_energies"][k].get<double>(), a["frame_energies"][k].get<double>(),
+                1e-10 * a["frame_energies"][k].get<double>());
+}
+
+TEST(BenchCli, ScalingRunsEverySizeInBothOrders) {
+  const std::string dir = primo::test::temp_dir();
+  ASSERT_EQ(run_primo("generate cylinder --segments 8 --bands 6 --triangles -o " + dir + "/tube.obj").exit_code, 0);
+  const std::string scenario = primo::test::source_path("assets/scenarios/bar-bend.json");
+  const CommandResult r = run_primo("bench scaling " + scenario + " --mesh " + dir +
+                                    "/tube.obj --bbox-handles --steps 0,1 --frames 3 --seed 7 --json " +
+                                    dir + "/s.json");
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("renum/ord"), std::string::npos) << r.out;
+  const nlohmann::json s = read_json(dir + "/s.json");
+  ASSERT_EQ(s["cases"].size(), 4u);
+  for (size_t i = 0; i < 4; ++i) {
+    const nlohmann::json& c = s["cases"][i];
+    EXPECT_EQ(c["faces"].get<int>(), i < 2 ? 96 : 384);
+    EXPECT_EQ(c["renumbered"].get<bool>(), i % 2 == 1);
+    EXPECT_EQ(c["drag_bench"]["shuffle"].get<int>(), i % 2 == 1 ? 7 : 0);
+    for (const char* key : {"setup_seconds", "median_frame_ms", "settle_seconds", "full_solve_seconds",
+                            "peak_memory_mb", "frame_ns_per_face", "peak_bytes_per_face",
+                            "frame_per_face_over_reference"})
+      EXPECT_GT(c[key].get<double>(), 0.0) << key;
+    EXPECT_GE(c["last_frame_lag_percent"].get<double>(), 0.0);
+    if (i % 2 == 1) {
+      EXPECT_GT(c["renumbered_over_file_order"].get<double>(), 0.0);
+      EXPECT_NEAR(c["drag_bench"]["converged_energy"].get<double>(),
+                  s["cases"][i - 1]["drag_bench"]["converged_energy"].get<double>(),
+                  1e-8 * c["drag_bench"]["converged_energy"].get<double>());
+    }
+  }
+  // The reference size is the one nearest 240k faces: here the larger.
+  EXPECT_DOUBLE_EQ(s["cases"][2]["frame_per_face_over_reference"].get<double>(), 1.0);
+}
+
+TEST(BenchCli, ScalingSaysWhenItsSharedMeshIsMissing) {
+  const std::string dir = primo::test::temp_dir();
+  const std::string scenario = primo::test::source_path("assets/scenarios/bar-bend.json");
+  const CommandResult r = run_primo("bench scaling " + scenario +
+                                    " --mesh no_such_mesh_4711.obj --steps 0 --json " + dir + "/s.json");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("skipped"), std::string::npos) << r.out;
+  EXPECT_TRUE(read_json(dir + "/s.json").contains("skipped"));
+  const CommandResult bad = run_primo("bench scaling " + scenario + " --steps 5");
+  EXPECT_NE(bad.exit_code, 0);
+}

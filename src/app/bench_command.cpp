@@ -9,6 +9,7 @@
 #include "bench/drag_bench.h"
 #include "bench/engine_bench.h"
 #include "bench/quality_bench.h"
+#include "bench/scaling_bench.h"
 #include "commands.h"
 #include "number_options.h"
 
@@ -76,6 +77,9 @@ Command register_bench(CLI::App& app) {
   drag->add_option("--subdivide", drag_args->subdivide,
                    "Loop-subdivide the (triangle) mesh this many times first")
       ->check(finite_range(0, 4));
+  drag->add_option("--shuffle", drag_args->shuffle,
+                   "Then renumber the mesh's vertices and faces at random from this seed (not 0), "
+                   "as another tool might write the same surface");
   drag->add_option("--frame-iterations", drag_args->frame_iterations,
                    "Solver iterations a frame, as the editor's batch where that many fit 50 ms "
                    "(hierarchical: the second is a Newton-Krylov step)")
@@ -180,10 +184,37 @@ Command register_bench(CLI::App& app) {
   auto quality_args = std::make_shared<bench::QualityBenchOptions>();
   CLI::App* quality = add_quality_options(*benchmarks, *quality_args);
 
-  return {benchmarks, [engine, engine_args, drag, drag_args, quality, quality_args]() -> int {
+  auto scaling_args = std::make_shared<bench::ScalingBenchOptions>();
+  CLI::App* scaling = benchmarks->add_subcommand(
+      "scaling", "The same pull dragged on a mesh Loop-subdivided to about 60k, 240k, 1M and 4M "
+                 "faces, in the file's order and renumbered (docs/performance.md)");
+  scaling->add_option("scenario", scaling_args->scenario,
+                      "Scenario of the pull (default: assets/scenarios/bench/bunny-ears.json)");
+  scaling->add_option("--mesh", scaling_args->mesh,
+                      "Use this triangle mesh instead of the scenario's (a bare file name is also "
+                      "looked up in shared/meshes)");
+  scaling->add_option("--steps", scaling_args->steps, "Loop steps, one size each")
+      ->delimiter(',')
+      ->capture_default_str()
+      ->check(CLI::Range(0, 4));
+  scaling->add_flag("--bbox-handles", scaling_args->bbox_handles,
+                    "The bounding-box pull of `bench drag --bbox-handles` instead of the "
+                    "scenario's handles");
+  scaling->add_option("--frames", scaling_args->frames, "Frames of each drag")
+      ->capture_default_str()
+      ->check(finite_range(1, 100000));
+  scaling->add_option("--seed", scaling_args->seed, "Seed of the renumbered copies (not 0)")
+      ->capture_default_str();
+  scaling->add_flag("--ordered-only", scaling_args->ordered_only,
+                    "Only the file's order, no renumbered copies");
+  scaling->add_option("--json", scaling_args->json, "Also write every figure as JSON");
+
+  return {benchmarks, [engine, engine_args, drag, drag_args, quality, quality_args, scaling,
+                       scaling_args]() -> int {
             if (engine->parsed()) return bench::run_engine_bench(*engine_args);
             if (drag->parsed()) return bench::run_drag_bench(*drag_args);
             if (quality->parsed()) return bench::run_quality_bench(*quality_args);
+            if (scaling->parsed()) return bench::run_scaling_bench(*scaling_args);
             return 1;  // require_subcommand(1) makes this unreachable
           }};
 }

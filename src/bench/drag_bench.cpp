@@ -1,5 +1,8 @@
 #include "drag_bench.h"
 
+#include <sys/resource.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -19,6 +22,7 @@
 #include "primo/geometry.h"
 #include "primo/hierarchical_solver.h"
 #include "primo/mesh_io.h"
+#include "primo/mesh_order.h"
 #include "primo/mesh_subdivision.h"
 #include "primo/output_files.h"
 #include "primo/scenario.h"
@@ -81,6 +85,7 @@ DragCase make_drag_case(const Scenario& scenario, const std::string& mesh_path,
     c.mesh = loop_subdivide(c.mesh, args.subdivide, mesh_path);
     c.subdivide_seconds = seconds_since(start);
   }
+  if (args.shuffle != 0) c.mesh = shuffled_mesh(c.mesh, args.shuffle);
 
   if (args.bbox_handles) {
     // Only the scenario's global prism parameters are kept: its regions, handles and forces
@@ -126,6 +131,7 @@ struct DragRun {
   double setup_seconds = 0.0;  // Deformer construction
   double solver_setup_seconds = 0.0;  // Deformer::prepare: hierarchy, symbolic analysis
   std::vector<double> frame_seconds;
+  std::vector<double> frame_page_faults;  // minor page faults in each frame
   std::vector<double> frame_energies;
   Breakdown first_frame;
   Breakdown later_frames;  // sum over frames 2..N
@@ -180,6 +186,14 @@ void set_targets(Deformer& deformer, const DragCase& c, double s) {
 
 double g_sink = 0.0;  // keeps the vertex read from being optimized away
 
+// Pages the kernel faulted in for this process so far without reading a disk: memory touched
+// for the first time, which a frame that allocates afresh pays for on every call.
+long minor_page_faults() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return usage.ru_minflt;
+}
+
 // The drag on `deformer` (made with the final targets): targets back to rest, then N frames.
 void run_frames(Deformer& deformer, const DragCase& c, const SolveOptions& base, int frames,
                 int frame_iterations, int lag_every, bool keep_motions, DragRun& run) {
@@ -195,15 +209,18 @@ void run_frames(Deformer& deformer, const DragCase& c, const SolveOptions& base,
   frame.max_iterations = frame_iterations;
   frame.drag_frame = true;
   frame.tolerance = 0.0;
+  std::vector<Vec3> positions;  // one buffer for every frame, as the editor keeps
   for (int k = 1; k <= frames; ++k) {
     const SolverClock before = SolverClock::read(deformer);
+    const long faults_before = minor_page_faults();
     const auto t0 = Clock::now();
     set_targets(deformer, c, double(k) / frames);
     const auto t1 = Clock::now();
     const SolveReport report = deformer.solve(frame);
     const auto t2 = Clock::now();
-    const std::vector<Vec3> positions = deformer.vertex_positions();
+    deformer.vertex_positions(positions);
     const auto t3 = Clock::now();
+    run.frame_page_faults.push_back(double(minor_page_faults() - faults_before));
     g_sink += positions.empty() ? 0.0 : positions.back().x();
 
     Breakdown& b = k == 1 ? run.first_frame : run.later_frames;
@@ -384,6 +401,7 @@ int run_drag_bench(const DragBenchOptions& args) {
   out["frames"] = args.frames;
   out["frame_iterations"] = args.frame_iterations;
   out["subdivide"] = args.subdivide;
+  out["shuffle"] = args.shuffle;
   out["bbox_handles"] = args.bbox_handles;
   out["drag_prediction"] = args.drag_prediction;
   std::printf("primo bench drag %s  [build: %s]\n\n", args.scenario.c_str(), build.c_str());
@@ -408,6 +426,8 @@ int run_drag_bench(const DragBenchOptions& args) {
   const double memory_after_mesh = peak_memory_mb();
   std::printf("Mesh       %s", mesh_path.c_str());
   if (args.subdivide > 0) std::printf(" + %d Loop steps", args.subdivide);
+  if (args.shuffle != 0)
+    std::printf(", renumbered at random (seed %llu)", (unsigned long long)args.shuffle);
   std::printf(": %d faces, %d vertices (load %.2f s", int(c.mesh.n_faces()),
               int(c.mesh.n_vertices()), c.load_seconds);
   if (args.subdivide > 0) std::printf(", subdivide %.2f s", c.subdivide_seconds);
@@ -529,6 +549,14 @@ int run_drag_bench(const DragBenchOptions& args) {
     out["frame_seconds"] = drag.frame_seconds;
     out["frame_energies"] = drag.frame_energies;
     out["median_ms"] = median_ms;
+    // Frames 2..N: the first also touches what the drag's state vectors need once.
+    const double faults =
+        drag.frame_page_faults.size() > 1
+            ? median_of(std::vector<double>(drag.frame_page_faults.begin() + 1, drag.frame_page_faults.end()))
+            : drag.frame_page_faults.front();
+    std::printf("  page faults a frame (median of frames 2..N): %.0f (%.1f MB of fresh pages)\n\n",
+                faults, faults * double(sysconf(_SC_PAGESIZE)) / (1024.0 * 1024.0));
+    out["page_faults_per_frame"] = faults;
     out["max_ms"] = max_ms;
     out["first_frame_ms"] = 1e3 * drag.frame_seconds.front();
     out["max_ms_after_first"] = max_later_ms;

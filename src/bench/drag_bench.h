@@ -11,6 +11,7 @@
 // second deformer, converged frame by frame), next to the energy gap. docs/performance.md
 // describes every figure.
 
+#include <cstdint>
 #include <string>
 
 #include "primo/deformer.h"
@@ -29,6 +30,9 @@ struct DragBenchOptions {
   std::string json;
   std::string mesh;  // instead of the scenario's; a bare file name is looked up in shared/meshes
   int subdivide = 0;  // Loop subdivision steps first
+  // Then, when not 0, the mesh's vertices and faces renumbered at random from this seed
+  // (shuffled_mesh): the same surface as another tool might write it.
+  std::uint64_t shuffle = 0;
   bool bbox_handles = false;  // the reach pose (reach_pose.h) instead of the scenario's handles
   bool drag_only = false;  // no convergence afterwards, no full solve: for repeated timings
   // Every this many frames (and at the last), how far the drag's mesh is from the shape the
