@@ -350,3 +350,24 @@ TEST(BenchCli, ScalingSaysWhenItsSharedMeshIsMissing) {
   const CommandResult bad = run_primo("bench scaling " + scenario + " --steps 5");
   EXPECT_NE(bad.exit_code, 0);
 }
+
+TEST(BenchCli, PrimoAsksForHugePagesUnlessToldNotTo) {
+  const std::string dir = primo::test::temp_dir();
+  const std::string scenario = primo::test::source_path("assets/scenarios/bar-bend.json");
+  const std::string drag = "bench drag " + scenario + " --frames 2 --drag-only --json ";
+  ASSERT_EQ(run_primo(drag + dir + "/on.json").exit_code, 0);
+  EXPECT_NE(read_json(dir + "/on.json")["machine"]["glibc_tunables"].get<std::string>().find(
+                "glibc.malloc.hugetlb=1"),
+            std::string::npos);
+  // Turned off, or set by the user already: the environment is left as it is.
+  const std::string off = "PRIMO_HUGE_PAGES=0 " + std::string(PRIMO_EXECUTABLE) + " " + drag +
+                          dir + "/off.json > /dev/null 2>&1";
+  ASSERT_EQ(std::system(off.c_str()), 0);
+  EXPECT_EQ(read_json(dir + "/off.json")["machine"]["glibc_tunables"].get<std::string>().find("hugetlb"),
+            std::string::npos);
+  const std::string own = "GLIBC_TUNABLES=glibc.malloc.hugetlb=0 " + std::string(PRIMO_EXECUTABLE) +
+                          " " + drag + dir + "/own.json > /dev/null 2>&1";
+  ASSERT_EQ(std::system(own.c_str()), 0);
+  EXPECT_EQ(read_json(dir + "/own.json")["machine"]["glibc_tunables"].get<std::string>(),
+            "glibc.malloc.hugetlb=0");
+}

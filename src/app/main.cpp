@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "commands.h"
+#include "huge_pages.h"
 #include "number_options.h"
 #include "primo/error.h"
 #include "primo/parallel.h"
@@ -51,6 +52,7 @@ std::string one_line_failure(const CLI::App* app, const CLI::Error& e) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  primo::app::restart_with_huge_pages(argv);
   CLI::App app{"PriMo: coupled prisms for intuitive surface modeling"};
   app.require_subcommand(0, 1);
   app.failure_message(one_line_failure);  // before the commands, which copy it

@@ -770,7 +770,10 @@ int run_drag_bench(const DragBenchOptions& args) {
                     {"blas_libraries", blas},
                     {"openblas_num_threads", blas_threads ? blas_threads : ""},
                     {"load_average_before", load_before},
-                    {"load_average_after", load_after}};
+                    {"load_average_after", load_after},
+                    // How the allocator was asked for memory: `primo` sets
+                    // glibc.malloc.hugetlb=1 (huge pages) unless PRIMO_HUGE_PAGES=0.
+                    {"glibc_tunables", std::getenv("GLIBC_TUNABLES") ? std::getenv("GLIBC_TUNABLES") : ""}};
   if (!args.json.empty()) write_text_atomically(args.json, out.dump(2) + "\n");
   return 0;
 }

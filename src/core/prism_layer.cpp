@@ -69,6 +69,12 @@ PrismLayer build_prism_layer(const Mesh& mesh, const PrismParameters& params, co
   const double beta = params.normal_blend;
   layer.corner_begin.reserve(mesh.n_faces() + 1);
   layer.corner_begin.push_back(0);
+  // A corner per halfedge that has a face: reserved, so that a million faces' corners are not
+  // copied through every doubling.
+  const size_t corners = mesh.n_halfedges();
+  layer.corner_vertex.reserve(corners);
+  layer.corner_point.reserve(corners);
+  layer.corner_offset.reserve(corners);
   for (auto f : mesh.faces()) {
     const int i = f.idx();
     const Vec3& c = geometry.centroid[i];
