@@ -13,14 +13,17 @@
 namespace primo {
 
 // The shared side of two neighbouring prisms i = face[0], j = face[1] across the mesh edge
-// (a, b), with a -> b the edge's direction in face[0]. side[s] holds the modes of prism
-// face[s]'s own side patch f00 = a_s - h_a d_sa, f10 = b_s - h_b d_sb, f01 = a_s + h_a d_sa,
-// f11 = b_s + h_b d_sb (both sides use the same (a, b) order so that u matches u).
+// (a, b), with a -> b the edge's direction in face[0]. Side s is prism face[s]'s own side
+// patch f00 = a_s - h_a d_sa, f10 = b_s - h_b d_sb, f01 = a_s + h_a d_sa, f11 = b_s + h_b d_sb
+// (both sides use the same (a, b) order so that u matches u), made from the prism corners
+// corner[s][0] (a's) and corner[s][1] (b's): PrismLayer::joint_side. Its modes are not kept
+// here: the rigid system keeps them relative to its bodies, and a second copy cost 192 bytes
+// a joint (290 MB at a million faces).
 struct Joint {
   int face[2];
   int vertex[2];  // a, b
+  int corner[2][2];  // per side, the corners of a and b
   double weight;  // w_ij = |e_ij|^2 / (|F_i| + |F_j|)
-  PatchModes side[2];
 };
 
 struct PrismLayer {
@@ -52,6 +55,8 @@ struct PrismLayer {
   int degree(int face) const { return corner_begin[face + 1] - corner_begin[face]; }
   // Side patch of a face towards its k-th edge (corner k to corner k + 1), boundary or not.
   PatchCorners side_patch(int face, int k) const;
+  // The modes of a joint's side s (Joint).
+  PatchModes joint_side(const Joint& joint, int side) const;
 };
 
 // Builds the layer. `params.face_*_factor` may be empty (all 1). Throws Error naming the face

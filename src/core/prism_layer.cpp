@@ -17,6 +17,14 @@ PatchCorners PrismLayer::side_patch(int face, int k) const {
           corner_point[a] + corner_offset[a], corner_point[b] + corner_offset[b]};
 }
 
+PatchModes PrismLayer::joint_side(const Joint& joint, int side) const {
+  const int ka = joint.corner[side][0], kb = joint.corner[side][1];
+  return patch_modes({corner_point[size_t(ka)] - corner_offset[size_t(ka)],
+                      corner_point[size_t(kb)] - corner_offset[size_t(kb)],
+                      corner_point[size_t(ka)] + corner_offset[size_t(ka)],
+                      corner_point[size_t(kb)] + corner_offset[size_t(kb)]});
+}
+
 namespace {
 
 double factor_or_one(const std::vector<double>& factors, int face) {
@@ -134,12 +142,8 @@ PrismLayer build_prism_layer(const Mesh& mesh, const PrismParameters& params, co
     joint.weight = length * length / (geometry.area[fi] + geometry.area[fj]);
     for (int s = 0; s < 2; ++s) {
       const int f = joint.face[s];
-      const int ka = layer.corner_begin[f] + corner_of(f, a);
-      const int kb = layer.corner_begin[f] + corner_of(f, b);
-      joint.side[s] = patch_modes({layer.corner_point[ka] - layer.corner_offset[ka],
-                                   layer.corner_point[kb] - layer.corner_offset[kb],
-                                   layer.corner_point[ka] + layer.corner_offset[ka],
-                                   layer.corner_point[kb] + layer.corner_offset[kb]});
+      joint.corner[s][0] = layer.corner_begin[f] + corner_of(f, a);
+      joint.corner[s][1] = layer.corner_begin[f] + corner_of(f, b);
     }
     layer.joints.push_back(joint);
   }

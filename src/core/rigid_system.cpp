@@ -108,16 +108,17 @@ RigidSystem build_rigid_system(const PrismLayer& layer, const std::vector<int>& 
   sys.couplings.reserve(layer.joints.size());  // at most one per joint (a coupling is 280 bytes)
   for (const Joint& j : layer.joints) {
     const int b0 = face_body[j.face[0]], b1 = face_body[j.face[1]];
+    const PatchModes side0 = layer.joint_side(j, 0), side1 = layer.joint_side(j, 1);
     if (b0 == b1) {
-      sys.internal_energy += j.weight * mode_distance2(j.side[0], j.side[1]);
+      sys.internal_energy += j.weight * mode_distance2(side0, side1);
       continue;
     }
     RigidSystem::Coupling c;
     c.body[0] = b0;
     c.body[1] = b1;
     c.weight = j.weight;
-    c.local[0] = relative_to(j.side[0], sys.bodies[b0].rest_center);
-    c.local[1] = relative_to(j.side[1], sys.bodies[b1].rest_center);
+    c.local[0] = relative_to(side0, sys.bodies[b0].rest_center);
+    c.local[1] = relative_to(side1, sys.bodies[b1].rest_center);
     c.update_cross();
     sys.couplings.push_back(c);
   }

@@ -12,7 +12,7 @@ std::vector<double> face_joint_energy(const PrismLayer& layer,
   for (const Joint& j : layer.joints) {
     const RigidTransform& a = motions[j.face[0]];
     const RigidTransform& b = motions[j.face[1]];
-    const PatchModes &p = j.side[0], &q = j.side[1];
+    const PatchModes p = layer.joint_side(j, 0), q = layer.joint_side(j, 1);
     const double e =
         j.weight * ((a.apply(p.mean) - b.apply(q.mean)).squaredNorm() +
                     kModeWeightDu * (a.rotation * p.du - b.rotation * q.du).squaredNorm() +
