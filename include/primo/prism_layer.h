@@ -53,6 +53,9 @@ struct PrismLayer {
 
   int n_faces() const { return int(face_centroid.size()); }
   int degree(int face) const { return corner_begin[face + 1] - corner_begin[face]; }
+  // The side patch from corner a to corner b of one face: f00 = a's bottom, f10 = b's
+  // bottom, f01 = a's top, f11 = b's top.
+  PatchCorners corner_patch(int a, int b) const;
   // Side patch of a face towards its k-th edge (corner k to corner k + 1), boundary or not.
   PatchCorners side_patch(int face, int k) const;
   // The modes of a joint's side s (Joint).

@@ -765,6 +765,7 @@ int run_drag_bench(const DragBenchOptions& args) {
   out["solver_setup_seconds"] = drag.solver_setup_seconds;
   out["hierarchy_bodies"] = drag.level_bodies;
   out["drag_only"] = args.drag_only;
+  const char* glibc_tunables = std::getenv("GLIBC_TUNABLES");
   out["machine"] = {{"cpu_model", cpu},
                     {"hardware_threads", threads},
                     {"blas_libraries", blas},
@@ -773,7 +774,7 @@ int run_drag_bench(const DragBenchOptions& args) {
                     {"load_average_after", load_after},
                     // How the allocator was asked for memory: `primo` sets
                     // glibc.malloc.hugetlb=1 (huge pages) unless PRIMO_HUGE_PAGES=0.
-                    {"glibc_tunables", std::getenv("GLIBC_TUNABLES") ? std::getenv("GLIBC_TUNABLES") : ""}};
+                    {"glibc_tunables", glibc_tunables ? glibc_tunables : ""}};
   if (!args.json.empty()) write_text_atomically(args.json, out.dump(2) + "\n");
   return 0;
 }

@@ -164,6 +164,7 @@ int run_scaling_bench(const ScalingBenchOptions& options) {
                            std::abs(std::log(number(*reference->result, "faces") / 240000.0))))
       reference = &c;
 
+  const Figures reference_figures = reference ? figures_of(*reference->result) : Figures{};
   std::printf("\n  %9s %-10s %8s %9s %8s %8s %9s %9s %9s %8s %9s %9s %9s\n", "faces", "order",
               "setup s", "frame ms", "settle s", "full s", "peak MB", "ns/face", "B/face",
               "lag %", "renum/ord", "frame/ref", "setup/ref");
@@ -183,9 +184,8 @@ int run_scaling_bench(const ScalingBenchOptions& options) {
           renumbered_ratio = f.median_ms / figures_of(*o.result).median_ms;
     double frame_ratio = std::nan(""), setup_ratio = std::nan("");
     if (reference) {
-      const Figures r = figures_of(*reference->result);
-      frame_ratio = f.frame_ns_per_face() / r.frame_ns_per_face();
-      setup_ratio = f.setup_us_per_face() / r.setup_us_per_face();
+      frame_ratio = f.frame_ns_per_face() / reference_figures.frame_ns_per_face();
+      setup_ratio = f.setup_us_per_face() / reference_figures.setup_us_per_face();
     }
     std::printf("  %9.0f %-10s %8.2f %9.1f %8.2f %8.2f %9.0f %9.1f %9.0f %8.3f %9.2f %9.2f %9.2f\n",
                 f.faces, c.shuffled ? "renumbered" : "file", f.setup_s, f.median_ms, f.settle_s,

@@ -9,20 +9,18 @@
 
 namespace primo {
 
+PatchCorners PrismLayer::corner_patch(int a, int b) const {
+  return {corner_point[size_t(a)] - corner_offset[size_t(a)], corner_point[size_t(b)] - corner_offset[size_t(b)],
+          corner_point[size_t(a)] + corner_offset[size_t(a)], corner_point[size_t(b)] + corner_offset[size_t(b)]};
+}
+
 PatchCorners PrismLayer::side_patch(int face, int k) const {
   const int begin = corner_begin[face];
-  const int n = degree(face);
-  const int a = begin + k, b = begin + (k + 1) % n;
-  return {corner_point[a] - corner_offset[a], corner_point[b] - corner_offset[b],
-          corner_point[a] + corner_offset[a], corner_point[b] + corner_offset[b]};
+  return corner_patch(begin + k, begin + (k + 1) % degree(face));
 }
 
 PatchModes PrismLayer::joint_side(const Joint& joint, int side) const {
-  const int ka = joint.corner[side][0], kb = joint.corner[side][1];
-  return patch_modes({corner_point[size_t(ka)] - corner_offset[size_t(ka)],
-                      corner_point[size_t(kb)] - corner_offset[size_t(kb)],
-                      corner_point[size_t(ka)] + corner_offset[size_t(ka)],
-                      corner_point[size_t(kb)] + corner_offset[size_t(kb)]});
+  return patch_modes(corner_patch(joint.corner[side][0], joint.corner[side][1]));
 }
 
 namespace {
