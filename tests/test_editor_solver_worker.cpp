@@ -234,3 +234,45 @@ TEST(EditorSolverWorker, AJumpOnTheHierarchicalSolverSettlesWhereADirectSolveEnd
   EXPECT_LT(largest_point_distance(w.status().geometry->positions, direct.vertex_positions()),
             1e-4 * t.topology->bbox_diagonal);
 }
+
+TEST(EditorSolverWorker, ADragOfSlowFramesShowsPreviewsAndThenTheFullResolution) {
+  // Frames at full resolution count as slow from any length here: after the drag's first
+  // frame (measured at full resolution) the pictures are previews, and once the hand stops
+  // the full resolution catches up to where a direct solve ends.
+  Tube t(2.0, 40, 60);
+  auto p = t.problem();
+  p->spec.method = SolverMethod::Hierarchical;
+  SolverWorker w;
+  w.set_iteration_limit(false);
+  w.set_preview_above(0.0);
+  w.submit_problem(p);
+  ASSERT_TRUE(w.wait_idle(60));
+  EXPECT_FALSE(w.status().previews);
+  int previews = 0;
+  std::uint64_t last = 0;
+  for (int k = 1; k <= 30; ++k) {
+    t.state.handles[1].pose.translate = Vec3(0.02 * k, -0.005 * k, 0.0);
+    w.submit_targets(t.targets());
+    std::this_thread::sleep_for(std::chrono::milliseconds(15));
+    const SolverStatus s = w.status();
+    if (s.geometry && s.geometry->serial != last) {
+      last = s.geometry->serial;
+      previews += s.geometry->preview ? 1 : 0;
+    }
+  }
+  EXPECT_GT(previews, 0) << "the drag showed previews";
+  ASSERT_TRUE(w.wait_idle(120));
+  const SolverStatus settled = w.status();
+  ASSERT_EQ(settled.phase, SolverPhase::Settled);
+  EXPECT_TRUE(settled.previews);
+  ASSERT_TRUE(settled.geometry);
+  EXPECT_FALSE(settled.geometry->preview) << "the settled picture is the full resolution";
+
+  const DeformationInputs in = deformation_inputs(t.state);
+  Deformer direct(*t.mesh, in.params, in.handles, in.forces);
+  SolveOptions o;
+  o.method = SolveMethod::Hierarchical;
+  ASSERT_TRUE(direct.solve(o).converged);
+  EXPECT_LT(largest_point_distance(settled.geometry->positions, direct.vertex_positions()),
+            1e-4 * t.topology->bbox_diagonal);
+}

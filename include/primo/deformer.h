@@ -158,9 +158,22 @@ class Deformer {
   // minimum (the first cycles reuse the coarse factor made here).
   void prepare(const SolveOptions& options);
 
+  // A drag's frame on a mesh whose full cycles outlast a frame (a million faces: about 0.3 s
+  // on two cores): one cycle of the coarse levels only, their clusters moved rigidly on top of
+  // the state the preview began from (HierarchicalSolver::begin_preview), at a cost that
+  // hardly grows with the mesh. vertex_positions(), face_motions() and energy() then show the
+  // preview; the next solve() starts from it and converges to the full resolution's minimum.
+  // options.max_iterations cycles (at least one) at the current targets. Methods other than
+  // hierarchical solve() instead.
+  SolveReport preview(const SolveOptions& options);
+  bool previewing() const { return hierarchical_ && hierarchical_->previewing(); }
+
   // The energy of the current state (known without a pass over the joints after a solve or
-  // a handle move).
-  double energy() const { return known_energy_ ? *known_energy_ : system_.energy(state_); }
+  // a handle move); while previewing, the preview's.
+  double energy() const {
+    if (previewing()) return preview_energy_;
+    return known_energy_ ? *known_energy_ : system_.energy(state_);
+  }
   // Deformed vertex positions: the average over incident prisms of each prism's motion
   // applied to its own width-scaled copy of the vertex. Vertices without faces stay put.
   std::vector<Vec3> vertex_positions() const;
@@ -177,6 +190,7 @@ class Deformer {
   // one for the current targets: no path is followed from rest (PathOptions).
   std::vector<RigidTransform> face_motions() const;
   void set_face_motions(const std::vector<RigidTransform>& motions);
+  // The solver's state (while previewing, the one the preview began from, handles moved).
   const std::vector<BodyState>& body_states() const { return state_; }
   const GlobalSolver* global_solver() const { return global_.get(); }
   const HierarchicalSolver* hierarchical_solver() const { return hierarchical_.get(); }
@@ -214,6 +228,9 @@ class Deformer {
   std::vector<double> target_move(const PathOptions& limits) const;
   bool make_solver(const SolveOptions& options);  // whether it was made now
   double body_energy(int body) const;  // of the joints and springs on one body
+  // vertex_positions, a body's point (relative to its rest centre) placed by world_point.
+  template <class WorldPoint>
+  void gather_vertices(std::vector<Vec3>& points, const WorldPoint& world_point) const;
   void rebuild_springs();
   void place_springs(const std::vector<Vec3>& offsets);  // one target offset per force
 
@@ -236,6 +253,10 @@ class Deformer {
   std::unique_ptr<GlobalSolver> global_;  // made on first use: symbolic analysis once
   std::unique_ptr<HierarchicalSolver> hierarchical_;  // made on first use
   void problem_changed();  // targets or state were set from outside
+  // Carries a preview into state_ (a solve goes on from it) or drops it (the state is set).
+  void end_preview();
+  void cancel_preview();
+  double preview_energy_ = 0.0;
   // The last solve converged with this method and tolerance, and nothing changed since.
   bool settled_ = false;
   // The state is the minimum the last solve converged to (no iteration since; a jump from it

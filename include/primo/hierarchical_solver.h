@@ -111,6 +111,10 @@ struct HierarchicalOptions {
   // part 23).
   bool newton_krylov_in_frames = true;
   NewtonKrylovOptions newton_krylov;
+  // A drag's preview (HierarchicalSolver::begin_preview) runs on the finest coarse level with
+  // at most this many couplings, so that a preview frame costs about the same on any mesh:
+  // its cycles, and one pass over the fine bodies for the picture.
+  int preview_max_couplings = 300000;
 };
 
 struct HierarchicalTimings {
@@ -188,6 +192,47 @@ class HierarchicalSolver {
   void set_drag_frame(bool drag_frame) { drag_frame_ = drag_frame; }
   bool newton_krylov_ready() const { return newton_krylov_ && newton_krylov_->structure_built(); }
 
+  // A preview of a drag on a mesh whose cycles outlast a frame: the same energy minimized over
+  // a coarse level's clusters only, each moved rigidly on top of the fine state as it was when
+  // the preview began. Its frames restrict nothing from the fine level and sweep none of it,
+  // so they cost what the coarse levels cost; the picture (previewed) is one pass over the
+  // fine bodies. The fine state stays as it was, handles aside, until end_preview carries the
+  // clusters' motions into it, from where cycles converge to the full resolution's minimum.
+  // `level`: a coarse level, 1 to levels() - 1 (-1: automatic_preview_level). The bodies that
+  // are not free must come first in the fine system, as the Deformer's handles do.
+  void begin_preview(const std::vector<BodyState>& fine_state, int level = -1);
+  // One frame at the current targets: the fine state's locked bodies (moved by the caller)
+  // and springs are taken over, then one cycle on the preview's levels. Returns the fine
+  // energy of the picture (exact: clusters move their fine prisms rigidly).
+  double preview_frame(const std::vector<BodyState>& fine_state);
+  // Carries the preview's motions into `fine_state` and ends it.
+  void end_preview(std::vector<BodyState>& fine_state);
+  void cancel_preview() { preview_level_ = -1; }  // the fine state was replaced: drop it
+  bool previewing() const { return preview_level_ > 0; }
+  int preview_level() const { return preview_level_; }
+  // The finest coarse level with at most HierarchicalOptions::preview_max_couplings couplings
+  // (the coarsest when none has so few); -1 without coarse levels.
+  int automatic_preview_level() const;
+  // A fine body's state as the preview shows it (previewing() only).
+  BodyState previewed(const std::vector<BodyState>& fine_state, int body) const {
+    const BodyState& base = size_t(body) < preview_anchor_.size() ? preview_anchor_[size_t(body)]
+                                                                  : fine_state[size_t(body)];
+    const int c = preview_cluster_[size_t(body)];
+    const BodyState& corr = (*preview_correction_)[size_t(c)];
+    return {corr.rotation * base.rotation,
+            corr.rotation * (base.position - (*preview_center_)[size_t(c)]) + corr.position};
+  }
+  // Where the preview shows the point `x` (relative to the body's rest centre) of a fine body:
+  // two turns of a vector, where previewed() turns a matrix.
+  Vec3 previewed_point(const std::vector<BodyState>& fine_state, int body, const Vec3& x) const {
+    const BodyState& base = size_t(body) < preview_anchor_.size() ? preview_anchor_[size_t(body)]
+                                                                  : fine_state[size_t(body)];
+    const int c = preview_cluster_[size_t(body)];
+    const BodyState& corr = (*preview_correction_)[size_t(c)];
+    return corr.rotation * (base.rotation * x + base.position - (*preview_center_)[size_t(c)]) +
+           corr.position;
+  }
+
  private:
   struct Level;
   static void merge_coupled_pairs(Level& level, Level* finer_level, const RigidSystem& fine,
@@ -229,6 +274,16 @@ class HierarchicalSolver {
   // The relative decrease of the first cycle at fixed targets (the second since they moved):
   // whether this settle started far from the minimum (newton_krylov_above), and near it.
   std::optional<double> settle_start_decrease_;
+  // The preview (begin_preview): its level (-1: none), each fine body's cluster there, the
+  // fine states of the leading locked bodies when it began (the level's couplings see them
+  // there; the caller moves them since), the level's corrections and centres, and the
+  // difference between the fine energy and the level's (joints inside clusters).
+  int preview_level_ = -1;
+  std::vector<int> preview_cluster_;
+  std::vector<BodyState> preview_anchor_;
+  const std::vector<BodyState>* preview_correction_ = nullptr;
+  const std::vector<Vec3>* preview_center_ = nullptr;
+  double preview_energy_offset_ = 0.0;
   HierarchicalTimings timings_;
 };
 

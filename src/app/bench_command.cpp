@@ -102,6 +102,10 @@ Command register_bench(CLI::App& app) {
       ->check(finite_range(0.0, 2.0));
   drag->add_flag("--drag-only", drag_args->drag_only,
                  "Only the frames: no solving on to convergence, no full solve from rest");
+  drag->add_flag("--preview", drag_args->preview,
+                 "Frames show the drag's preview (coarse levels only, as the editor shows a "
+                 "drag on a mesh whose cycles outlast a frame); the settle is the full "
+                 "resolution catching up");
   drag->add_flag("--undo-redo", drag_args->undo_redo,
                  "After the settle: the targets back to rest and to the pose again, solved in "
                  "the editor's batches (an undo and a redo)");
@@ -115,6 +119,10 @@ Command register_bench(CLI::App& app) {
   drag->add_option("--coarsest-max-bodies", h.hierarchy.coarsest_max_bodies,
                    "Coarsen until the coarsest level has at most this many bodies")
       ->check(finite_range(1, 10000000))
+      ->group(group);
+  drag->add_option("--preview-max-couplings", h.preview_max_couplings,
+                   "With --preview: the finest coarse level with at most this many couplings")
+      ->check(finite_range(0, 100000000))
       ->group(group);
   drag->add_option("--fine-sweeps", h.sweeps_per_level, "Local sweeps on the fine level per cycle")
       ->check(finite_range(0, 1000))

@@ -140,6 +140,8 @@ struct DragRun {
   int foreground_factorizations = 0, background_factorizations = 0;  // during the drag
   double background_factorization_seconds = 0.0;
   std::vector<int> level_bodies;  // hierarchical: bodies per level, fine first
+  int preview_level = -1;         // --preview: the level the frames were solved on
+  int preview_couplings = 0;
   SolveReport converge;
   Breakdown converge_profile;
   double memory_after_drag_mb = 0.0;
@@ -196,7 +198,8 @@ long minor_page_faults() {
 
 // The drag on `deformer` (made with the final targets): targets back to rest, then N frames.
 void run_frames(Deformer& deformer, const DragCase& c, const SolveOptions& base, int frames,
-                int frame_iterations, int lag_every, bool keep_motions, DragRun& run) {
+                int frame_iterations, int lag_every, bool keep_motions, bool preview,
+                DragRun& run) {
   set_targets(deformer, c, 0.0);  // every handle and force back at rest
   deformer.reset();
   // The editor sets the solver up when the handles are made, before they are dragged.
@@ -216,7 +219,7 @@ void run_frames(Deformer& deformer, const DragCase& c, const SolveOptions& base,
     const auto t0 = Clock::now();
     set_targets(deformer, c, double(k) / frames);
     const auto t1 = Clock::now();
-    const SolveReport report = deformer.solve(frame);
+    const SolveReport report = preview ? deformer.preview(frame) : deformer.solve(frame);
     const auto t2 = Clock::now();
     deformer.vertex_positions(positions);
     const auto t3 = Clock::now();
@@ -239,6 +242,10 @@ void run_frames(Deformer& deformer, const DragCase& c, const SolveOptions& base,
   if (const HierarchicalSolver* h = deformer.hierarchical_solver()) {
     for (int l = 0; l < h->levels(); ++l) run.level_bodies.push_back(h->bodies(l));
     run.drag_factor_lag = h->drag_factor_lag();
+    if (h->previewing()) {
+      run.preview_level = h->preview_level();
+      run.preview_couplings = int(h->system(run.preview_level).couplings.size());
+    }
   }
   const SolverClock after_drag = SolverClock::read(deformer);
   run.foreground_factorizations =
@@ -400,6 +407,7 @@ int run_drag_bench(const DragBenchOptions& args) {
   out["solver"] = solve_method_name(method);
   out["frames"] = args.frames;
   out["frame_iterations"] = args.frame_iterations;
+  out["preview"] = args.preview;
   out["subdivide"] = args.subdivide;
   out["shuffle"] = args.shuffle;
   out["bbox_handles"] = args.bbox_handles;
@@ -519,7 +527,8 @@ int run_drag_bench(const DragBenchOptions& args) {
     auto deformer = std::make_unique<Deformer>(c.mesh, c.prisms, c.handles, c.forces);
     drag.setup_seconds = seconds_since(start);
     run_frames(*deformer, c, base, args.frames, args.frame_iterations,
-               args.drag_only ? 0 : args.lag_every, args.lag_settle && !args.drag_only, drag);
+               args.drag_only ? 0 : args.lag_every, args.lag_settle && !args.drag_only,
+               args.preview, drag);
 
     const double median_ms = 1e3 * median_of(drag.frame_seconds);
     const double max_ms =
@@ -535,8 +544,15 @@ int run_drag_bench(const DragBenchOptions& args) {
       if (drag.drag_factor_lag > 0)
         std::printf("; coarse factors refreshed in the background during the drag, taking over "
                     "%d coarse steps later", drag.drag_factor_lag);
-      std::printf("\n\n");
+      std::printf("\n");
+      if (drag.preview_level > 0)
+        std::printf("Preview    the frames solved level %d only (%d bodies, %d couplings), "
+                    "the fine level from the settle on\n",
+                    drag.preview_level, drag.level_bodies[size_t(drag.preview_level)],
+                    drag.preview_couplings);
+      std::printf("\n");
       out["drag_factor_lag"] = drag.drag_factor_lag;
+      out["preview_level"] = drag.preview_level;
     }
     std::printf("Drag (%d frames; deformer setup %.3f s and solver setup %.3f s before the "
                 "drag, as in the editor, not in the frames)\n",

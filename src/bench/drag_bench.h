@@ -35,6 +35,10 @@ struct DragBenchOptions {
   std::uint64_t shuffle = 0;
   bool bbox_handles = false;  // the reach pose (reach_pose.h) instead of the scenario's handles
   bool drag_only = false;  // no convergence afterwards, no full solve: for repeated timings
+  // The frames show the drag's preview (Deformer::preview: coarse levels only, as the editor
+  // shows a drag on a mesh whose cycles outlast a frame) instead of solving the fine level;
+  // the settle after the drag is the full resolution catching up.
+  bool preview = false;
   // Every this many frames (and at the last), how far the drag's mesh is from the shape the
   // solver converges to for that frame's targets: the lag the artist sees. 0: the last frame
   // only (its converged shape is the one the solve after the drag reaches).

@@ -177,11 +177,14 @@ Deformer::Deformer(Deformer&& other) noexcept
       known_energy_(other.known_energy_),
       solved_transforms_(std::move(other.solved_transforms_)),
       solved_offsets_(std::move(other.solved_offsets_)) {
+  // A preview under way is carried into the state (its solver reads nothing of the system).
+  if (other.previewing()) other.hierarchical_->end_preview(state_);
   other.global_.reset();
   other.hierarchical_.reset();
 }
 
 Deformer& Deformer::operator=(Deformer&& other) noexcept {
+  if (other.previewing()) other.hierarchical_->end_preview(other.state_);
   order_ = std::move(other.order_);
   rest_points_ = std::move(other.rest_points_);
   layer_ = std::move(other.layer_);
@@ -236,6 +239,7 @@ BodyState Deformer::handle_state(int handle) const {
 }
 
 void Deformer::reset() {
+  cancel_preview();
   problem_changed();
   predictor_.forget();
   path_ = {};
@@ -337,7 +341,67 @@ void Deformer::predict(DragPredictor& predictor, const std::vector<double>& move
   predictor.remember(move, state_);
 }
 
+void Deformer::end_preview() {
+  if (!previewing()) return;
+  hierarchical_->end_preview(state_);
+  known_energy_.reset();
+  settled_ = false;
+  solved_to_minimum_ = false;
+  coarse_factor_of_state_ = false;
+  predictor_.forget();  // the state jumped from the fine one to the preview's
+}
+
+void Deformer::cancel_preview() {
+  if (hierarchical_) hierarchical_->cancel_preview();
+}
+
+SolveReport Deformer::preview(const SolveOptions& options) {
+  if (options.method != SolveMethod::Hierarchical) return solve(options);
+  make_solver(options);
+  if (hierarchical_->levels() < 2) return solve(options);
+  const auto start = std::chrono::steady_clock::now();
+  SolveReport report;
+  if (!previewing()) {
+    report.initial_energy = energy();
+    if (!std::isfinite(report.initial_energy)) {
+      report.energy = report.initial_energy;
+      report.stop_reason = "not finite";
+      return report;
+    }
+    hierarchical_->begin_preview(state_);
+  } else {
+    report.initial_energy = preview_energy_;
+  }
+  predictor_.forget();
+  path_ = {};
+  settled_ = false;
+  solved_to_minimum_ = false;
+  coarse_factor_of_state_ = false;
+  double e = 0.0;
+  for (int k = 0; k < std::max(options.max_iterations, 1); ++k)
+    e = hierarchical_->preview_frame(state_);
+  if (!std::isfinite(e)) {
+    // Settings too large for the coarse levels: back to the state the preview began from.
+    hierarchical_->cancel_preview();
+    known_energy_.reset();
+    report.energy = energy();
+    report.stop_reason = "not finite";
+    return report;
+  }
+  preview_energy_ = e;
+  report.iterations = std::max(options.max_iterations, 1);
+  report.energy = e;
+  report.energies.push_back(e);
+  report.stop_reason = "preview";
+  // The picture is the one for the targets set now: no path to follow to them.
+  for (size_t h = 0; h < handles_.size(); ++h) solved_transforms_[h] = handles_[h].transform;
+  for (size_t f = 0; f < forces_.size(); ++f) solved_offsets_[f] = forces_[f].target_offset;
+  report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return report;
+}
+
 SolveReport Deformer::solve(const SolveOptions& options) {
+  end_preview();
   // A drag's frame starts from the predicted state (SolveOptions::drag_prediction). A jump
   // followed in sub-steps is a continuation of its own: a prediction on top would put the
   // state ahead of the sub-steps' targets, and its change would be no frame of a drag.
@@ -610,6 +674,7 @@ bool Deformer::make_solver(const SolveOptions& options) {
 }
 
 void Deformer::prepare(const SolveOptions& options) {
+  end_preview();
   // A global iteration always makes a fresh factor; the hierarchy's coarse one can be made
   // now, from the state the next cycle starts from.
   if (make_solver(options) && options.method == SolveMethod::Hierarchical) {
@@ -625,6 +690,19 @@ std::vector<Vec3> Deformer::vertex_positions() const {
 }
 
 void Deformer::vertex_positions(std::vector<Vec3>& points) const {
+  if (previewing()) {
+    const HierarchicalSolver& h = *hierarchical_;
+    gather_vertices(points, [&](int b, const Vec3& x) { return h.previewed_point(state_, b, x); });
+  } else {
+    gather_vertices(points, [&](int b, const Vec3& x) {
+      const BodyState& s = state_[size_t(b)];
+      return Vec3(s.rotation * x + s.position);
+    });
+  }
+}
+
+template <class WorldPoint>
+void Deformer::gather_vertices(std::vector<Vec3>& points, const WorldPoint& world_point) const {
   // Each vertex the mean of its corners where their prisms put them, added in corner order,
   // gathered per vertex in parallel: no buffer of corners (at a million faces 69 MB, which
   // the allocator maps afresh and the kernel faults in on every call).
@@ -641,8 +719,7 @@ void Deformer::vertex_positions(std::vector<Vec3>& points) const {
       for (int i = first; i < last; ++i) {
         const int k = layer_.vertex_corners[size_t(i)];
         const int b = corner_body_[size_t(k)];
-        const BodyState& s = state_[size_t(b)];
-        sum += Vec3(s.rotation * (layer_.corner_point[size_t(k)] - body_center_[size_t(b)]) + s.position);
+        sum += world_point(b, Vec3(layer_.corner_point[size_t(k)] - body_center_[size_t(b)]));
       }
       out = sum / double(last - first);
     }
@@ -660,7 +737,7 @@ std::vector<RigidTransform> Deformer::face_motions() const {
   std::vector<RigidTransform> motions(layer_.n_faces());
   for (int f = 0; f < layer_.n_faces(); ++f) {
     const int b = system_.face_body[f];
-    const BodyState& s = state_[b];
+    const BodyState s = previewing() ? hierarchical_->previewed(state_, b) : state_[size_t(b)];
     RigidTransform& m = motions[size_t(order_.face_of[size_t(f)])];
     m.rotation = s.rotation;
     m.translation = s.position - s.rotation * body_center_[size_t(b)];
@@ -673,6 +750,7 @@ void Deformer::set_face_motions(const std::vector<RigidTransform>& motions) {
   for (const RigidTransform& m : motions)
     if (!m.rotation.allFinite() || !m.translation.allFinite())
       throw Error("a face motion is not finite");
+  cancel_preview();
   problem_changed();
   predictor_.forget();
   path_ = {};

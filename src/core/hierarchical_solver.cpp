@@ -8,6 +8,7 @@
 #include "prefetch.h"
 #include "primo/block_matrix.h"
 #include "primo/coupling_moments.h"
+#include "primo/error.h"
 #include "primo/horn.h"
 #include "primo/parallel.h"
 
@@ -261,7 +262,12 @@ int HierarchicalSolver::drag_factor_lag() const {
   if (options_.drag_factor_lag >= 0 || !coarse_solver_) return std::max(options_.drag_factor_lag, 0);
   const double flops = coarse_solver_->factorization_flops();
   if (flops <= 0.0) return 0;
-  return automatic_drag_factor_lag(flops, fine_.n_bodies(), coarse_steps_per_cycle());
+  // A preview's cycles stop at its level: they take as long as that level's bodies make them.
+  const int finest = previewing() ? bodies(preview_level_) : fine_.n_bodies();
+  int steps = options_.coarse_iterations;
+  for (int l = previewing() ? preview_level_ : 1; l < int(levels_.size()); ++l)
+    steps *= options_.intermediate_cycles;
+  return automatic_drag_factor_lag(flops, finest, previewing() ? steps : coarse_steps_per_cycle());
 }
 
 int HierarchicalSolver::coarse_steps_per_cycle() const {
@@ -487,6 +493,7 @@ void HierarchicalSolver::solve_level(int l) {
 
 void HierarchicalSolver::prepare(const std::vector<BodyState>& fine_state) {
   if (levels_.empty()) return;
+  cancel_preview();  // the levels are restricted from `fine_state` again
   restrict_level(*levels_[0], fine_, fine_state, nullptr);
   for (size_t l = 0; l + 1 < levels_.size(); ++l)
     restrict_level(*levels_[l + 1], levels_[l]->system, levels_[l]->correction,
@@ -494,7 +501,97 @@ void HierarchicalSolver::prepare(const std::vector<BodyState>& fine_state) {
   coarse_solver_->factorize_at(levels_.back()->correction);
 }
 
+int HierarchicalSolver::automatic_preview_level() const {
+  for (int l = 1; l < levels(); ++l)
+    if (int(system(l).couplings.size()) <= options_.preview_max_couplings) return l;
+  return levels() - 1 >= 1 ? levels() - 1 : -1;
+}
+
+void HierarchicalSolver::begin_preview(const std::vector<BodyState>& fine_state, int level) {
+  if (levels_.empty()) throw Error("a preview needs a coarse level: the mesh is too small");
+  if (level < 0) level = automatic_preview_level();
+  level = std::clamp(level, 1, int(levels_.size()));
+  const auto t = Clock::now();
+  // The levels up to the preview's from the fine state, as a cycle restricts them; the ones
+  // above it are restricted by its frames.
+  restrict_level(*levels_[0], fine_, fine_state, nullptr);
+  for (int l = 1; l < level; ++l)
+    restrict_level(*levels_[size_t(l)], levels_[size_t(l - 1)]->system,
+                   levels_[size_t(l - 1)]->correction, &levels_[size_t(l - 1)]->orientation);
+  const Level& top = *levels_[size_t(level - 1)];
+  preview_cluster_.resize(fine_state.size());
+  parallel_chunks(fine_state.size(), kParallelGrain, [&](size_t begin, size_t end) {
+    for (size_t b = begin; b < end; ++b) {
+      int c = levels_[0]->parent_of[b];
+      for (int l = 1; l < level; ++l) c = levels_[size_t(l)]->parent_of[size_t(c)];
+      preview_cluster_[b] = c;
+    }
+  });
+  // Locked bodies are alone in their clusters at every level (cluster_hierarchy.h): the
+  // preview moves each as its target moved since now.
+  size_t anchors = 0;
+  for (size_t b = 0; b < fine_state.size(); ++b)
+    if (fine_.bodies[b].kind != BodyKind::Free) anchors = b + 1;
+  preview_anchor_.assign(fine_state.begin(), fine_state.begin() + std::ptrdiff_t(anchors));
+  preview_correction_ = &top.correction;
+  preview_center_ = &top.center;
+  // The level leaves out the joints inside its clusters, which its motions do not change.
+  preview_energy_offset_ = fine_.energy(fine_state) - top.system.energy(top.correction);
+  preview_level_ = level;
+  restart_acceleration();
+  timings_.restrict_prolong += seconds_since(t);
+}
+
+double HierarchicalSolver::preview_frame(const std::vector<BodyState>& fine_state) {
+  if (!previewing()) throw Error("no preview under way");
+  Level& top = *levels_[size_t(preview_level_ - 1)];
+  for (size_t b = 0; b < preview_anchor_.size(); ++b) {
+    const BodyKind kind = fine_.bodies[b].kind;
+    if (kind == BodyKind::Free) continue;
+    const BodyState& from = preview_anchor_[b];
+    const BodyState& to = fine_state[b];
+    const size_t c = size_t(preview_cluster_[b]);
+    BodyState& correction = top.correction[c];
+    if (kind != BodyKind::PinnedPosition)
+      correction.rotation = to.rotation * from.rotation.transpose();
+    if (kind != BodyKind::FixedRotation)
+      correction.position = to.position - correction.rotation * (from.position - top.center[c]);
+  }
+  // Springs keep their number and order at every level; only their targets move.
+  for (int l = 0; l < preview_level_; ++l) {
+    std::vector<RigidSystem::Spring>& springs = levels_[size_t(l)]->system.springs;
+    for (size_t k = 0; k < springs.size(); ++k) springs[k].target = fine_.springs[k].target;
+  }
+  ++timings_.cycles;
+  // A frame of a drag for the coarse factors' refreshes (solve_level), but one whose reused
+  // factors' steps are halved where they overshoot rather than replaced in the foreground:
+  // the preview's frames are short, and a fresh factor made there (at a million faces 50-90
+  // ms beside them) would be most of a frame.
+  cycles_since_restart_ = 0;
+  const int iterations_ahead = iterations_ahead_;
+  iterations_ahead_ = kMovingCycles + 1;
+  solve_level(preview_level_ - 1);
+  iterations_ahead_ = iterations_ahead;
+  ++cycles_since_restart_;
+  return top.system.energy(top.correction) + preview_energy_offset_;
+}
+
+void HierarchicalSolver::end_preview(std::vector<BodyState>& fine_state) {
+  if (!previewing()) return;
+  const auto t = Clock::now();
+  parallel_chunks(fine_state.size(), kParallelGrain, [&](size_t begin, size_t end) {
+    for (size_t b = begin; b < end; ++b) fine_state[b] = previewed(fine_state, int(b));
+  });
+  preview_level_ = -1;
+  restart_acceleration();
+  timings_.restrict_prolong += seconds_since(t);
+}
+
 double HierarchicalSolver::cycle(std::vector<BodyState>& fine_state, double energy_before) {
+  if (previewing()) {  // cycles go on from the preview's picture
+    end_preview(fine_state);
+    energy_before = std::numeric_limits<double>::quiet_NaN();
+  }
   const bool settling = cycles_since_restart_ > kMovingCycles;
   interrupted_ = false;
   // A Newton step that lowered the energy by less than kConfirmBelow of it left the state

@@ -232,7 +232,10 @@ void Editor::update(double seconds) {
       status_.geometry->positions.size() == size_t(doc_->topology->n_vertices)) {
     geometry_ = status_.geometry;
     geometry_changed_ = true;
-    if (gesture_ != Gesture::None) ++current_gesture_.mesh_updates;
+    if (gesture_ != Gesture::None) {
+      ++current_gesture_.mesh_updates;
+      if (geometry_->preview) ++current_gesture_.preview_updates;
+    }
     if (display.heat_map) overlay_changed_ = true;
   }
   if (display.heat_map != last_display_.heat_map ||

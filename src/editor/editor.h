@@ -261,6 +261,7 @@ class Editor {
     // How often the mesh shown changed during the gesture: what the artist sees move (on a
     // big mesh, fewer times than frames are drawn).
     int mesh_updates = 0;
+    int preview_updates = 0;  // of them, drags' previews (SolverGeometry::preview)
     double updates_per_second() const { return total_ms > 0 ? 1000.0 * mesh_updates / total_ms : 0.0; }
   };
   const GestureStats& last_gesture_stats() const { return gesture_stats_; }

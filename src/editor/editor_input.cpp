@@ -289,10 +289,11 @@ void Editor::end_gesture() {
   gesture_stats_ = current_gesture_;
   if (gesture_stats_.frames > 0)
     std::printf("[primo edit] %s: %d frames, %.1f ms mean, %.1f ms max per frame; solver %.1f ms "
-                "per iteration; the mesh changed %d times (%.1f a second)\n",
+                "per iteration; the mesh changed %d times (%.1f a second, %d of them previews)\n",
                 what.c_str(), gesture_stats_.frames, gesture_stats_.total_ms / gesture_stats_.frames,
                 gesture_stats_.max_ms, 1000.0 * status_.seconds_per_iteration,
-                gesture_stats_.mesh_updates, gesture_stats_.updates_per_second());
+                gesture_stats_.mesh_updates, gesture_stats_.updates_per_second(),
+                gesture_stats_.preview_updates);
 }
 
 void Editor::cancel_gesture() {

@@ -32,6 +32,9 @@ constexpr int kMaxBatch = 8;
 // batches converge only linearly and can stop early on a small, backtracked step.
 constexpr double kDragPauseSeconds = 0.3;
 constexpr int kSettleBatch = 4;
+// A drag whose frames at full resolution take longer than this shows previews instead
+// (Deformer::preview), so that the picture follows the hand ten times a second on any mesh.
+constexpr double kPreviewAbove = 0.1;  // SolverWorker::set_preview_above
 
 }  // namespace
 
@@ -64,7 +67,8 @@ const char* phase_label(SolverPhase phase) {
   return "?";
 }
 
-SolverWorker::SolverWorker(std::function<void()> notify) : notify_(std::move(notify)) {
+SolverWorker::SolverWorker(std::function<void()> notify)
+    : notify_(std::move(notify)), preview_above_(kPreviewAbove) {
   status_.phase_start = Clock::now();
   thread_ = std::thread([this] { run(); });
 }
@@ -270,8 +274,10 @@ bool SolverWorker::build(const SolverProblem& problem) {
     // be solved against targets of a problem it does not describe.
     return false;
   }
+  const bool same_mesh = problem_ && problem_->mesh == problem.mesh;
   problem_ = std::make_shared<SolverProblem>(problem);
   first_solve_ = true;
+  if (!same_mesh) full_frame_seconds_ = 0.0;  // a new mesh: measured on its first drag
   {
     std::lock_guard<std::mutex> lock(mutex_);
     status_.build_seconds = std::chrono::duration<double>(Clock::now() - start).count();
@@ -332,7 +338,9 @@ void SolverWorker::step() {
   // coarse correction is shown as soon as it reaches the prisms, and the swept result after,
   // so the surface follows the hand twice a cycle.
   const bool slow_cycles = status().seconds_per_iteration > kBatchSeconds;
-  if (dragging && slow_cycles && options.method == SolveMethod::Hierarchical)
+  const bool preview = dragging && options.method == SolveMethod::Hierarchical &&
+                       full_frame_seconds_ > preview_above_;
+  if (dragging && slow_cycles && !preview && options.method == SolveMethod::Hierarchical)
     options.on_coarse_correction = [this] { publish_geometry(); };
   if (first_solve_) {  // say what the wait is for: it can take seconds on big meshes
     {
@@ -345,7 +353,9 @@ void SolverWorker::step() {
   }
   SolveReport report;
   try {
-    report = deformer_->solve(options);
+    report = preview ? deformer_->preview(options) : deformer_->solve(options);
+    if (dragging && !preview && report.iterations > 0 && report.path_steps == 0)
+      full_frame_seconds_ = report.seconds;
     if (first_solve_) {
       // A problem at rest (new handles not moved yet) returns before the solver is set up:
       // set it up now, while the user has not started dragging, so the drag's first frame
@@ -368,7 +378,7 @@ void SolverWorker::step() {
     confirming_ = true;
     converged = false;
   }
-  if (report.iterations > 0) {
+  if (report.iterations > 0 && !preview) {
     const double per_iteration = report.seconds / report.iterations;
     chunk_ = std::clamp(int(kBatchSeconds / std::max(per_iteration, 1e-6)), 1, kMaxBatch);
   }
@@ -390,7 +400,9 @@ void SolverWorker::step() {
     status_.energy = report.energy;
     status_.iterations = done + report.iterations;
     status_.total_iterations += report.iterations;
-    if (report.iterations > 0) status_.seconds_per_iteration = report.seconds / report.iterations;
+    if (report.iterations > 0 && !preview)
+      status_.seconds_per_iteration = report.seconds / report.iterations;
+    status_.previews = full_frame_seconds_ > preview_above_;
     status_.progress = std::max(status_.progress, progress);
     if (converged)
       next = SolverPhase::Settled;
@@ -403,10 +415,32 @@ void SolverWorker::step() {
 }
 
 void SolverWorker::publish_geometry(bool with_motions) {
-  auto g = std::make_shared<SolverGeometry>();
+  // A geometry no one reads any more (neither the status nor the window) is filled again:
+  // its buffers keep their pages, where a fresh one at a million faces maps and zeroes about
+  // 30 MB for every picture of a drag.
+  std::shared_ptr<SolverGeometry> g;
+  for (std::shared_ptr<SolverGeometry>& spare : spare_geometry_)
+    if (spare && spare.use_count() == 1) {
+      g = spare;
+      break;
+    }
+  if (g) {
+    g->face_motions.reset();
+    g->face_energy.clear();
+    g->prism_corners.clear();
+    g->energy_scale = 1.0;
+  } else {
+    g = std::make_shared<SolverGeometry>();
+    for (std::shared_ptr<SolverGeometry>& spare : spare_geometry_)
+      if (!spare) {
+        spare = g;
+        break;
+      }
+  }
   if (with_motions)
     g->face_motions = std::make_shared<const std::vector<RigidTransform>>(deformer_->face_motions());
-  g->positions = deformer_->vertex_positions();
+  deformer_->vertex_positions(g->positions);
+  g->preview = deformer_->previewing();
   g->render_positions.resize(3 * g->positions.size());
   parallel_chunks(g->positions.size(), kParallelGrain, [&](size_t begin, size_t end) {
     for (size_t v = begin; v < end; ++v)

@@ -8,6 +8,7 @@
 // per-face energy heat map and the prism corners. Until the latest request has converged
 // (or hit solver.max_iterations) it keeps iterating; then it sleeps.
 
+#include <atomic>
 #include <chrono>
 #include <condition_variable>
 #include <cstdint>
@@ -67,6 +68,9 @@ struct SolverGeometry {
   // The solver's per-face motions, published when a request settles or stops (what a saved
   // scenario stores as its solved state); null while solving.
   std::shared_ptr<const std::vector<RigidTransform>> face_motions;
+  // The picture is a drag's preview (Deformer::preview: the coarse levels' solve carried to
+  // every vertex), not the full resolution, which follows once the hand pauses.
+  bool preview = false;
   std::uint64_t serial = 0;             // increases with every publication
   // The serial of the problem request this geometry was solved for: a reader that switched
   // documents drops geometry of problems it submitted before the switch.
@@ -86,6 +90,8 @@ struct SolverStatus {
   std::string detail;        // what a long first iteration does ("building the hierarchy")
   bool solver_ready = false;  // the solver of the current problem is set up (no first-use pause)
   bool stopped_by_user = false;  // Stopped by SolverWorker::stop, not by the iteration limit
+  // A full cycle outlasts a frame of the drag's pictures (kPreviewAbove): drags show previews.
+  bool previews = false;
   std::chrono::steady_clock::time_point phase_start;
   std::shared_ptr<const SolverGeometry> geometry;
 
@@ -109,6 +115,9 @@ class SolverWorker {
   // the problem's solver.max_iterations; without it (the editor), it settles until converged
   // unless stop() is called.
   void set_iteration_limit(bool limited);
+  // A drag whose frames at full resolution take longer than this many seconds shows previews
+  // (Deformer::preview) until the hand pauses (default 0.1: ten pictures a second).
+  void set_preview_above(double seconds) { preview_above_ = seconds; }
   // Ends the current solve where it is (phase Stopped, stopped_by_user); the next request, or
   // the same targets submitted again, solves on from there.
   void stop();
@@ -139,6 +148,7 @@ class SolverWorker {
   std::uint64_t pending_targets_serial_ = 0;
   bool want_energy_ = false, want_prisms_ = false, outputs_dirty_ = false;
   bool iteration_limit_ = true;
+  std::atomic<double> preview_above_;
   bool stop_requested_ = false;
   SolverStatus status_;
 
@@ -146,12 +156,17 @@ class SolverWorker {
   std::shared_ptr<const SolverProblem> problem_;
   std::unique_ptr<Deformer> deformer_;
   int chunk_ = 1;
+  // Seconds of a drag's frame solved at full resolution (the last measured; 0: none yet).
+  double full_frame_seconds_ = 0.0;
   bool first_solve_ = true;  // the first solve of a Deformer also sets up its solver
   std::chrono::steady_clock::time_point last_request_;
   bool confirming_ = false;
   double first_decrease_ = 0.0;
   bool energy_on_ = false, prisms_on_ = false;
   std::uint64_t geometry_serial_ = 0;
+  // Geometries published before, whose buffers a publication reuses once only this holds them
+  // (the status holds the newest, the window the one on screen).
+  std::shared_ptr<SolverGeometry> spare_geometry_[3];
   std::uint64_t built_problem_serial_ = 0;  // the request deformer_ was built from
   bool limited_ = true;  // iteration_limit_ as of the latest request
 

@@ -69,4 +69,24 @@ inline std::string make_bar_scenario(const std::string& dir) {
   return path;
 }
 
+// A tube (`primo generate cylinder` with `cylinder_options`) along y in `dir`, its bottom
+// fixed and its top the handle "top" whose fix and transform are `top` (JSON members).
+// Returns the scenario's path.
+inline std::string make_tube_scenario(const std::string& dir, const std::string& cylinder_options,
+                                      const std::string& top) {
+  EXPECT_EQ(run(kPrimo + " generate cylinder " + cylinder_options + " -o " + dir +
+                "/tube.obj > /dev/null"),
+            0);
+  const std::string path = dir + "/tube.json";
+  write_text(path, R"({
+  "format": "primo-scenario/1",
+  "mesh": "tube.obj",
+  "handles": [
+    { "name": "bottom", "select": { "box": { "min": [-1, -1, -1], "max": [1, 0.05, 1] } }, "fix": "all" },
+    { "name": "top", "select": { "box": { "min": [-1, 1.95, -1], "max": [1, 3, 1] } }, )" + top + R"( }
+  ]
+})");
+  return path;
+}
+
 }  // namespace primo::e2e

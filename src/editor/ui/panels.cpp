@@ -508,6 +508,10 @@ void solver_section(Editor& e) {
   if (d.frames > 0)
     ImGui::TextDisabled("Last %s: %d frames, %.1f ms mean, %.1f ms max, mesh %.1f/s", d.what.c_str(),
                         d.frames, d.total_ms / d.frames, d.max_ms, d.updates_per_second());
+  if (st.previews)
+    ImGui::TextDisabled(st.geometry && st.geometry->preview
+                            ? "Showing a preview (coarse levels); full resolution when the hand pauses"
+                            : "Full resolution (drags show a preview: a full cycle outlasts 0.1 s)");
 }
 
 void draw_properties(Editor& e, UiState& ui, float top, float height) {
@@ -564,8 +568,13 @@ void draw_status(Editor& e, UiState& ui) {
     std::snprintf(frame, sizeof frame, "idle");
   else
     std::snprintf(frame, sizeof frame, "%.1f ms", e.frame_ms());
-  std::snprintf(right, sizeof right, "%s | %s | E %.4g | %s", tool_label(e.tools.tool),
-                phase_label(st.phase), st.energy, frame);
+  // Where drags show previews, which picture is on screen: the preview follows the hand, the
+  // full resolution catches up once it pauses.
+  const char* picture = !st.previews                          ? ""
+                        : st.geometry && st.geometry->preview ? " | preview"
+                                                              : " | full resolution";
+  std::snprintf(right, sizeof right, "%s | %s%s | E %.4g | %s", tool_label(e.tools.tool),
+                phase_label(st.phase), picture, st.energy, frame);
   ImGui::SameLine(std::max(ImGui::GetCursorPosX() + 20, display.x - ImGui::CalcTextSize(right).x - 16));
   ImGui::TextDisabled("%s", right);
   ImGui::End();
