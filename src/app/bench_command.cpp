@@ -106,6 +106,10 @@ Command register_bench(CLI::App& app) {
                  "Frames show the drag's preview (coarse levels only, as the editor shows a "
                  "drag on a mesh whose cycles outlast a frame); the settle is the full "
                  "resolution catching up");
+  drag->add_option("--preview-full-every", drag_args->preview_full_every,
+                   "With --preview: every K frames one at full resolution (0: none)")
+      ->capture_default_str()
+      ->check(finite_range(0, 100000));
   drag->add_flag("--undo-redo", drag_args->undo_redo,
                  "After the settle: the targets back to rest and to the pose again, solved in "
                  "the editor's batches (an undo and a redo)");

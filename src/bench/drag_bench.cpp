@@ -199,7 +199,7 @@ long minor_page_faults() {
 // The drag on `deformer` (made with the final targets): targets back to rest, then N frames.
 void run_frames(Deformer& deformer, const DragCase& c, const SolveOptions& base, int frames,
                 int frame_iterations, int lag_every, bool keep_motions, bool preview,
-                DragRun& run) {
+                int full_every, DragRun& run) {
   set_targets(deformer, c, 0.0);  // every handle and force back at rest
   deformer.reset();
   // The editor sets the solver up when the handles are made, before they are dragged.
@@ -219,7 +219,8 @@ void run_frames(Deformer& deformer, const DragCase& c, const SolveOptions& base,
     const auto t0 = Clock::now();
     set_targets(deformer, c, double(k) / frames);
     const auto t1 = Clock::now();
-    const SolveReport report = preview ? deformer.preview(frame) : deformer.solve(frame);
+    const bool full = !preview || (full_every > 0 && k % full_every == 0);
+    const SolveReport report = full ? deformer.solve(frame) : deformer.preview(frame);
     const auto t2 = Clock::now();
     deformer.vertex_positions(positions);
     const auto t3 = Clock::now();
@@ -242,8 +243,8 @@ void run_frames(Deformer& deformer, const DragCase& c, const SolveOptions& base,
   if (const HierarchicalSolver* h = deformer.hierarchical_solver()) {
     for (int l = 0; l < h->levels(); ++l) run.level_bodies.push_back(h->bodies(l));
     run.drag_factor_lag = h->drag_factor_lag();
-    if (h->previewing()) {
-      run.preview_level = h->preview_level();
+    if (preview) {
+      run.preview_level = h->previewing() ? h->preview_level() : h->automatic_preview_level();
       run.preview_couplings = int(h->system(run.preview_level).couplings.size());
     }
   }
@@ -408,6 +409,7 @@ int run_drag_bench(const DragBenchOptions& args) {
   out["frames"] = args.frames;
   out["frame_iterations"] = args.frame_iterations;
   out["preview"] = args.preview;
+  out["preview_full_every"] = args.preview_full_every;
   out["subdivide"] = args.subdivide;
   out["shuffle"] = args.shuffle;
   out["bbox_handles"] = args.bbox_handles;
@@ -528,7 +530,7 @@ int run_drag_bench(const DragBenchOptions& args) {
     drag.setup_seconds = seconds_since(start);
     run_frames(*deformer, c, base, args.frames, args.frame_iterations,
                args.drag_only ? 0 : args.lag_every, args.lag_settle && !args.drag_only,
-               args.preview, drag);
+               args.preview, args.preview_full_every, drag);
 
     const double median_ms = 1e3 * median_of(drag.frame_seconds);
     const double max_ms =

@@ -39,6 +39,9 @@ struct DragBenchOptions {
   // shows a drag on a mesh whose cycles outlast a frame) instead of solving the fine level;
   // the settle after the drag is the full resolution catching up.
   bool preview = false;
+  // With preview: every this many frames, a frame at full resolution instead (0: none), from
+  // which the next previews carry only the motion since.
+  int preview_full_every = 0;
   // Every this many frames (and at the last), how far the drag's mesh is from the shape the
   // solver converges to for that frame's targets: the lag the artist sees. 0: the last frame
   // only (its converged shape is the one the solve after the drag reaches).
