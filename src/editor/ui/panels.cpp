@@ -600,7 +600,11 @@ void draw_progress(Editor& e, const ViewportRect& vp) {
     text = t;
   } else if (st.phase == SolverPhase::Solving && seconds > 0.4) {
     char t[160];
-    std::snprintf(t, sizeof t, "Converging: iteration %d, energy %.4g", st.iterations, st.energy);
+    if (st.geometry && st.geometry->preview)
+      std::snprintf(t, sizeof t, "Preview: coarse levels, energy %.4g (full resolution when the hand pauses)",
+                    st.energy);
+    else
+      std::snprintf(t, sizeof t, "Converging: iteration %d, energy %.4g", st.iterations, st.energy);
     text = t;
     fraction = float(st.progress);
   }
