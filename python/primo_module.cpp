@@ -7,8 +7,12 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <cmath>
+#include <limits>
 #include <memory>
+#include <mutex>
 #include <optional>
+#include <shared_mutex>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -32,6 +36,75 @@ namespace {
 using Points = py::array_t<double, py::array::c_style | py::array::forcecast>;
 using Indices = py::array_t<long long, py::array::c_style | py::array::forcecast>;
 
+// Work on the solver's threads holds this shared; a change of their number holds it alone, so
+// that it waits for running solves (TBB's arena must not be replaced under them).
+std::shared_mutex g_thread_pool;
+
+// The C++ object behind `self` or an argument. `Type.__new__(Type)` makes an instance whose
+// __init__ never ran, and pybind11 would hand its methods uninitialised memory.
+template <class T>
+T& initialized(py::handle object, const char* type_name) {
+  if (!py::isinstance<T>(object))
+    throw py::type_error(std::string("expected a primo.") + type_name + ", got " +
+                         std::string(py::str(py::type::handle_of(object).attr("__name__"))));
+  auto* instance = reinterpret_cast<py::detail::instance*>(object.ptr());
+  py::detail::value_and_holder v = instance->get_value_and_holder(py::detail::get_type_info(typeid(T)));
+  if (!v || !v.holder_constructed())
+    throw py::type_error(std::string("primo.") + type_name + ".__init__ was not called");
+  return *v.template value_ptr<T>();
+}
+
+double finite_number(double x, const std::string& what) {
+  if (!std::isfinite(x)) throw py::value_error(what + ": expected a finite number");
+  return x;
+}
+
+double number_at_least(double x, double least, const std::string& what) {
+  if (!(std::isfinite(x) && x >= least)) {
+    char bound[32];
+    std::snprintf(bound, sizeof bound, "%g", least);
+    throw py::value_error(what + ": expected a finite number of at least " + bound);
+  }
+  return x;
+}
+
+double positive_number(double x, const std::string& what) {
+  if (!(std::isfinite(x) && x > 0)) throw py::value_error(what + ": expected a finite number above 0");
+  return x;
+}
+
+// An index as the scenario format reads one: an integer in [0, 2^31 - 1], never a float or a
+// bool, never wrapped.
+int index_value(long long value, const std::string& what) {
+  if (value < 0 || value > std::numeric_limits<int>::max())
+    throw py::index_error(what + ": index " + std::to_string(value) + " is out of range");
+  return int(value);
+}
+
+int index_from(py::handle item, const std::string& what) {
+  if (PyBool_Check(item.ptr()) || !PyLong_Check(item.ptr()))
+    throw py::type_error(what + ": expected integer indices, got " +
+                         std::string(py::str(py::type::handle_of(item).attr("__name__"))));
+  int overflow = 0;
+  const long long value = PyLong_AsLongLongAndOverflow(item.ptr(), &overflow);
+  if (overflow != 0) throw py::index_error(what + ": index " + std::string(py::str(item)) + " is out of range");
+  return index_value(value, what);
+}
+
+// An integer NumPy array's entries (floats are refused rather than truncated).
+Indices integer_array(const py::array& a, const std::string& what) {
+  const char kind = a.dtype().kind();
+  if (kind != 'i' && kind != 'u')
+    throw py::type_error(what + ": expected an integer array, got dtype " + std::string(py::str(a.dtype())));
+  if (kind == 'u' && a.dtype().itemsize() >= 8) {  // above 2^63 would wrap in long long
+    const auto u = a.cast<py::array_t<unsigned long long, py::array::c_style | py::array::forcecast>>();
+    for (py::ssize_t i = 0; i < u.size(); ++i)
+      if (u.data()[i] > (unsigned long long)std::numeric_limits<int>::max())
+        throw py::index_error(what + ": index " + std::to_string(u.data()[i]) + " is out of range");
+  }
+  return a.cast<Indices>();
+}
+
 // A vector of points handed to NumPy as an (n, 3) array that owns it: no copy (Vec3 is three
 // contiguous doubles).
 py::array_t<double> to_numpy(std::vector<Vec3> points) {
@@ -48,13 +121,19 @@ std::vector<Vec3> from_numpy(const Points& array, const std::string& what) {
     throw py::value_error(what + ": expected an (n, 3) array");
   std::vector<Vec3> points(size_t(array.shape(0)));
   const double* p = array.data();
-  for (size_t i = 0; i < points.size(); ++i) points[i] = Vec3(p[3 * i], p[3 * i + 1], p[3 * i + 2]);
+  for (size_t i = 0; i < points.size(); ++i) {
+    points[i] = Vec3(p[3 * i], p[3 * i + 1], p[3 * i + 2]);
+    if (!points[i].allFinite())
+      throw py::value_error(what + ": row " + std::to_string(i) + " is not finite");
+  }
   return points;
 }
 
 Vec3 vec3(const std::vector<double>& v, const std::string& what) {
   if (v.size() != 3) throw py::value_error(what + ": expected three numbers");
-  return Vec3(v[0], v[1], v[2]);
+  const Vec3 out(v[0], v[1], v[2]);
+  if (!out.allFinite()) throw py::value_error(what + ": expected finite numbers");
+  return out;
 }
 
 // Faces as an (m, k) integer array (all faces k-gons) or any sequence of index sequences
@@ -62,16 +141,17 @@ Vec3 vec3(const std::vector<double>& v, const std::string& what) {
 std::vector<std::vector<int>> faces_from_python(const py::object& faces) {
   std::vector<std::vector<int>> out;
   if (py::isinstance<py::array>(faces) && py::array(faces).ndim() == 2) {
-    const Indices a = faces.cast<Indices>();
+    const Indices a = integer_array(py::array(faces), "faces");
     const long long* p = a.data();
     out.resize(size_t(a.shape(0)));
     for (size_t f = 0; f < out.size(); ++f)
-      for (py::ssize_t k = 0; k < a.shape(1); ++k) out[f].push_back(int(p[f * size_t(a.shape(1)) + size_t(k)]));
+      for (py::ssize_t k = 0; k < a.shape(1); ++k)
+        out[f].push_back(index_value(p[f * size_t(a.shape(1)) + size_t(k)], "faces"));
     return out;
   }
   for (const py::handle face : faces) {
     std::vector<int> polygon;
-    for (const py::handle index : face) polygon.push_back(index.cast<int>());
+    for (const py::handle index : face) polygon.push_back(index_from(index, "faces"));
     out.push_back(std::move(polygon));
   }
   return out;
@@ -87,11 +167,11 @@ std::vector<int> face_list(const py::object& faces) {
         if (mask.data()[i]) out.push_back(int(i));
       return out;
     }
-    const Indices indices = faces.cast<Indices>();
-    for (py::ssize_t i = 0; i < indices.size(); ++i) out.push_back(int(indices.data()[i]));
+    const Indices indices = integer_array(a, "faces");
+    for (py::ssize_t i = 0; i < indices.size(); ++i) out.push_back(index_value(indices.data()[i], "faces"));
     return out;
   }
-  for (const py::handle index : faces) out.push_back(index.cast<int>());
+  for (const py::handle index : faces) out.push_back(index_from(index, "faces"));
   return out;
 }
 
@@ -112,6 +192,10 @@ RigidTransform transform_from(const std::optional<Points>& matrix, const std::ve
       throw py::value_error("matrix: expected a 4x4 array");
     RigidTransform t;
     const double* m = matrix->data();
+    for (int i = 0; i < 16; ++i)
+      if (!std::isfinite(m[i])) throw py::value_error("matrix: expected finite numbers");
+    if (m[12] != 0.0 || m[13] != 0.0 || m[14] != 0.0 || m[15] != 1.0)
+      throw py::value_error("matrix: the bottom row must be 0 0 0 1 (a rigid motion)");
     for (int r = 0; r < 3; ++r) {
       for (int c = 0; c < 3; ++c) t.rotation(r, c) = m[4 * r + c];
       t.translation[r] = m[4 * r + 3];
@@ -121,12 +205,18 @@ RigidTransform transform_from(const std::optional<Points>& matrix, const std::ve
       throw py::value_error("matrix: the upper 3x3 block is not a rotation");
     return t;
   }
-  return make_rigid_transform(vec3(translate, "translate"), vec3(axis, "axis"), angle_deg,
+  return make_rigid_transform(vec3(translate, "translate"), vec3(axis, "axis"),
+                              finite_number(angle_deg, "angle_deg"),
                               center ? vec3(*center, "center") : default_center);
 }
 
 SolveOptions solve_options(const std::string& method, int max_iterations, double tolerance, bool path,
                            size_t faces) {
+  if (method != "auto" && method != "global" && method != "hierarchical" && method != "local")
+    throw py::value_error("method: expected \"auto\", \"global\", \"hierarchical\" or \"local\", got \"" +
+                          method + "\"");
+  if (max_iterations < 0) throw py::value_error("max_iterations: expected at least 0");
+  number_at_least(tolerance, 0.0, "tolerance");
   SolverSpec spec;
   spec.max_iterations = max_iterations;
   spec.tolerance = tolerance;
@@ -147,7 +237,20 @@ std::string report_text(const SolveReport& r) {
 struct PyDeformer {
   std::shared_ptr<const Mesh> mesh;
   std::unique_ptr<Deformer> deformer;
+  // One call at a time: a Deformer is not thread-safe, and Python threads may share one.
+  std::unique_ptr<std::mutex> busy = std::make_unique<std::mutex>();
 };
+
+// Runs `work` on the deformer behind `self` without the GIL, once the calls of other threads
+// on it (and any change of the thread count) have ended.
+template <class Work>
+auto with_deformer(py::handle self, Work&& work) {
+  PyDeformer& d = initialized<PyDeformer>(self, "Deformer");
+  py::gil_scoped_release free_python;
+  std::shared_lock<std::shared_mutex> pool(g_thread_pool);
+  std::lock_guard<std::mutex> lock(*d.busy);
+  return work(d);
+}
 
 PrismParameters prisms_from(std::optional<double> height, std::optional<double> half_thickness,
                             double normal_blend, double width, const std::optional<Points>& height_factors,
@@ -155,20 +258,23 @@ PrismParameters prisms_from(std::optional<double> height, std::optional<double> 
   if (height && half_thickness) throw py::value_error("give at most one of height and half_thickness");
   PrismParameters p = PrismParameters::product_default();
   if (height) {
-    p.height = *height;
+    p.height = number_at_least(*height, 0.0, "height");
     p.height_unit = HeightUnit::MeanEdgeLength;
   } else if (half_thickness) {
-    p.height = *half_thickness;
+    p.height = number_at_least(*half_thickness, 0.0, "half_thickness");
   }
-  p.normal_blend = normal_blend;
-  p.width = width;
-  auto factors = [](const std::optional<Points>& a) {
+  p.normal_blend = finite_number(normal_blend, "normal_blend");
+  p.width = positive_number(width, "width");
+  // As the scenario format's regions: heights at least 0, widths above 0.
+  auto factors = [](const std::optional<Points>& a, bool zero_allowed, const std::string& what) {
     std::vector<double> out;
     if (a) out.assign(a->data(), a->data() + a->size());
+    for (double x : out)
+      if (zero_allowed) number_at_least(x, 0.0, what); else positive_number(x, what);
     return out;
   };
-  p.face_height_factor = factors(height_factors);
-  p.face_width_factor = factors(width_factors);
+  p.face_height_factor = factors(height_factors, true, "height_factors");
+  p.face_width_factor = factors(width_factors, false, "width_factors");
   return p;
 }
 
@@ -185,8 +291,17 @@ PYBIND11_MODULE(primo, m) {
     }
   });
 
-  m.def("set_thread_count", &set_thread_count, py::arg("threads"),
-        "Threads the solver may use (0: every core). Results do not depend on it.");
+  m.def(
+      "set_thread_count",
+      [](int threads) {
+        if (threads < 0) throw py::value_error("threads: expected 0 (every core) or more");
+        py::gil_scoped_release free_python;
+        std::unique_lock<std::shared_mutex> pool(g_thread_pool);  // after running solves
+        set_thread_count(threads);
+      },
+      py::arg("threads"),
+      "Threads the solver may use (0: every core). Results do not depend on it; a change waits "
+      "for running solves.");
   m.def("thread_count", &thread_count);
 
   // --- Meshes ------------------------------------------------------------------------------
@@ -197,15 +312,19 @@ PYBIND11_MODULE(primo, m) {
            }),
            py::arg("vertices"), py::arg("faces"),
            "From an (n, 3) array and faces: an (m, k) integer array or a list of index lists.")
-      .def_property_readonly("n_vertices", [](const Mesh& mesh) { return mesh.n_vertices(); })
-      .def_property_readonly("n_faces", [](const Mesh& mesh) { return mesh.n_faces(); })
-      .def_property_readonly("vertices", [](const Mesh& mesh) {
+      .def_property_readonly("n_vertices", [](py::handle mesh_object) {
+        const Mesh& mesh = initialized<Mesh>(mesh_object, "Mesh"); return mesh.n_vertices(); })
+      .def_property_readonly("n_faces", [](py::handle mesh_object) {
+        const Mesh& mesh = initialized<Mesh>(mesh_object, "Mesh"); return mesh.n_faces(); })
+      .def_property_readonly("vertices", [](py::handle mesh_object) {
+        const Mesh& mesh = initialized<Mesh>(mesh_object, "Mesh");
         std::vector<Vec3> points;
         for (auto v : mesh.vertices()) points.push_back(mesh.point(v));
         return to_numpy(std::move(points));
       })
       .def_property_readonly("faces",
-                             [](const Mesh& mesh) -> py::object {
+                             [](py::handle mesh_object) -> py::object {
+        const Mesh& mesh = initialized<Mesh>(mesh_object, "Mesh");
                                std::vector<std::vector<int>> faces;
                                size_t k = 0;
                                bool uniform = true;
@@ -224,9 +343,11 @@ PYBIND11_MODULE(primo, m) {
                                return std::move(a);
                              },
                              "An (m, k) array when every face has k vertices, else a list of lists.")
-      .def_property_readonly("bbox_diagonal", [](const Mesh& mesh) { return bounding_box_diagonal(mesh); })
+      .def_property_readonly("bbox_diagonal", [](py::handle mesh_object) {
+        const Mesh& mesh = initialized<Mesh>(mesh_object, "Mesh"); return bounding_box_diagonal(mesh); })
       .def("face_centroids",
-           [](const Mesh& mesh) {
+           [](py::handle mesh_object) {
+        const Mesh& mesh = initialized<Mesh>(mesh_object, "Mesh");
              std::vector<Vec3> c;
              for (auto f : mesh.faces()) {
                Vec3 sum = Vec3::Zero();
@@ -238,7 +359,8 @@ PYBIND11_MODULE(primo, m) {
            },
            "Each face's vertex average, an (m, 3) array (what scenario box and sphere selections test).")
       .def("with_vertices",
-           [](const Mesh& mesh, const Points& vertices) {
+           [](py::handle mesh_object, const Points& vertices) {
+        const Mesh& mesh = initialized<Mesh>(mesh_object, "Mesh");
              const std::vector<Vec3> points = from_numpy(vertices, "vertices");
              if (points.size() != mesh.n_vertices())
                throw py::value_error("vertices: expected " + std::to_string(mesh.n_vertices()) + " rows, got " +
@@ -248,13 +370,15 @@ PYBIND11_MODULE(primo, m) {
              return out;
            },
            py::arg("vertices"), "The same faces at new vertex positions (a deformed copy to save).")
-      .def("__repr__", [](const Mesh& mesh) {
+      .def("__repr__", [](py::handle mesh_object) {
+        const Mesh& mesh = initialized<Mesh>(mesh_object, "Mesh");
         return "Mesh(" + std::to_string(mesh.n_vertices()) + " vertices, " + std::to_string(mesh.n_faces()) +
                " faces)";
       });
   m.def("load_mesh", [](const std::string& path) { return std::make_shared<Mesh>(load_mesh(path)); },
         py::arg("path"), "Reads OBJ, OFF, PLY, STL or OM.");
-  m.def("save_mesh", [](const Mesh& mesh, const std::string& path) { save_mesh(mesh, path); },
+  m.def("save_mesh", [](py::handle mesh_object, const std::string& path) {
+        const Mesh& mesh = initialized<Mesh>(mesh_object, "Mesh"); save_mesh(mesh, path); },
         py::arg("mesh"), py::arg("path"), "Writes by extension, atomically.");
 
   // --- Constraints -------------------------------------------------------------------------
@@ -268,15 +392,19 @@ PYBIND11_MODULE(primo, m) {
            }),
            py::arg("faces"), py::arg("fix") = "all", py::arg("name") = "",
            "faces: indices or a boolean mask; fix: \"all\", \"position\" or \"orientation\".")
-      .def_readwrite("name", &Handle::name)
-      .def_property_readonly("faces", [](const Handle& h) { return h.faces; })
-      .def_property_readonly("fix", [](const Handle& h) { return fix_name(h.fix); });
+      .def_property(
+          "name", [](py::handle self) { return initialized<Handle>(self, "Handle").name; },
+          [](py::handle self, const std::string& name) { initialized<Handle>(self, "Handle").name = name; })
+      .def_property_readonly("faces", [](py::handle self) {
+        const Handle& h = initialized<Handle>(self, "Handle"); return h.faces; })
+      .def_property_readonly("fix", [](py::handle self) {
+        const Handle& h = initialized<Handle>(self, "Handle"); return fix_name(h.fix); });
   py::class_<Force>(m, "Force", "Springs pulling faces by an offset.")
       .def(py::init([](const py::object& faces, double stiffness, const std::vector<double>& offset,
                        const std::string& name) {
              Force f;
              f.faces = face_list(faces);
-             f.stiffness = stiffness;
+             f.stiffness = number_at_least(stiffness, 0.0, "stiffness");
              f.target_offset = vec3(offset, "offset");
              f.name = name;
              return f;
@@ -296,34 +424,45 @@ PYBIND11_MODULE(primo, m) {
       .def("__repr__", &report_text);
 
   // --- Deformer ----------------------------------------------------------------------------
-  py::class_<PyDeformer>(m, "Deformer", "Rigid prisms on the faces, coupled by elastic joints.")
-      .def(py::init([](std::shared_ptr<Mesh> mesh, std::vector<Handle> handles, std::vector<Force> forces,
-                       std::optional<double> height, std::optional<double> half_thickness,
-                       double normal_blend, double width, std::optional<Points> height_factors,
-                       std::optional<Points> width_factors) {
+  py::class_<PyDeformer>(m, "Deformer",
+                         "Rigid prisms on the faces, coupled by elastic joints. Safe to share across "
+                         "threads: calls on one Deformer run one at a time.")
+      .def(py::init([](py::handle mesh_object, const py::sequence& handle_objects,
+                       const py::sequence& force_objects, std::optional<double> height,
+                       std::optional<double> half_thickness, double normal_blend, double width,
+                       std::optional<Points> height_factors, std::optional<Points> width_factors) {
+             initialized<Mesh>(mesh_object, "Mesh");
+             std::vector<Handle> handles;
+             for (const py::handle h : handle_objects) handles.push_back(initialized<Handle>(h, "Handle"));
+             std::vector<Force> forces;
+             for (const py::handle f : force_objects) forces.push_back(initialized<Force>(f, "Force"));
              const PrismParameters prisms =
                  prisms_from(height, half_thickness, normal_blend, width, height_factors, width_factors);
              PyDeformer d;
-             d.mesh = mesh;
-             d.deformer = std::make_unique<Deformer>(*mesh, prisms, std::move(handles), std::move(forces));
+             d.mesh = mesh_object.cast<std::shared_ptr<Mesh>>();
+             py::gil_scoped_release free_python;
+             std::shared_lock<std::shared_mutex> pool(g_thread_pool);
+             d.deformer = std::make_unique<Deformer>(*d.mesh, prisms, std::move(handles), std::move(forces));
              return d;
            }),
-           py::arg("mesh"), py::arg("handles") = std::vector<Handle>{}, py::arg("forces") = std::vector<Force>{},
+           py::arg("mesh"), py::arg("handles") = py::list(), py::arg("forces") = py::list(),
            py::kw_only(), py::arg("height") = py::none(), py::arg("half_thickness") = py::none(),
            py::arg("normal_blend") = 0.0, py::arg("width") = 1.0, py::arg("height_factors") = py::none(),
            py::arg("width_factors") = py::none(),
            "Prisms: half_thickness (fraction of the bounding-box diagonal; default 0.08, the editor's "
            "material) or height (mean edge lengths, the scenario format's); per-face factors optional.")
       .def("set_handle_transform",
-           [](PyDeformer& d, int handle, std::optional<Points> matrix, std::vector<double> translate,
+           [](py::handle self, int handle, std::optional<Points> matrix, std::vector<double> translate,
               std::vector<double> axis, double angle_deg, std::optional<std::vector<double>> center) {
-             if (handle < 0 || handle >= int(d.deformer->handles().size()))
-               throw py::index_error("handle " + std::to_string(handle) + ": there are " +
-                                     std::to_string(d.deformer->handles().size()));
-             const Vec3 centroid =
-                 area_weighted_centroid(compute_face_geometry(*d.mesh), d.deformer->handles()[size_t(handle)].faces);
-             d.deformer->set_handle_transform(handle,
-                                              transform_from(matrix, translate, axis, angle_deg, center, centroid));
+             with_deformer(self, [&](PyDeformer& d) {
+               if (handle < 0 || handle >= int(d.deformer->handles().size()))
+                 throw py::index_error("handle " + std::to_string(handle) + ": there are " +
+                                       std::to_string(d.deformer->handles().size()));
+               const Vec3 centroid = area_weighted_centroid(compute_face_geometry(*d.mesh),
+                                                            d.deformer->handles()[size_t(handle)].faces);
+               d.deformer->set_handle_transform(
+                   handle, transform_from(matrix, translate, axis, angle_deg, center, centroid));
+             });
            },
            py::arg("handle"), py::kw_only(), py::arg("matrix") = py::none(),
            py::arg("translate") = std::vector<double>{0, 0, 0}, py::arg("axis") = std::vector<double>{0, 0, 1},
@@ -331,29 +470,46 @@ PYBIND11_MODULE(primo, m) {
            "A 4x4 matrix, or a rotation of angle_deg about axis through center (default: the "
            "handle's area-weighted centroid) followed by translate.")
       .def("set_force_offset",
-           [](PyDeformer& d, int force, std::vector<double> offset) {
-             if (force < 0 || force >= int(d.deformer->forces().size()))
-               throw py::index_error("force " + std::to_string(force) + ": there are " +
-                                     std::to_string(d.deformer->forces().size()));
-             d.deformer->set_force_offset(force, vec3(offset, "offset"));
+           [](py::handle self, int force, std::vector<double> offset) {
+             with_deformer(self, [&](PyDeformer& d) {
+               if (force < 0 || force >= int(d.deformer->forces().size()))
+                 throw py::index_error("force " + std::to_string(force) + ": there are " +
+                                       std::to_string(d.deformer->forces().size()));
+               d.deformer->set_force_offset(force, vec3(offset, "offset"));
+             });
            },
            py::arg("force"), py::arg("offset"))
       .def("solve",
-           [](PyDeformer& d, const std::string& method, int max_iterations, double tolerance, bool path) {
-             const SolveOptions o = solve_options(method, max_iterations, tolerance, path, d.mesh->n_faces());
-             py::gil_scoped_release free_python;
-             return d.deformer->solve(o);
+           [](py::handle self, const std::string& method, int max_iterations, double tolerance, bool path) {
+             return with_deformer(self, [&](PyDeformer& d) {
+               const SolveOptions o = solve_options(method, max_iterations, tolerance, path, d.mesh->n_faces());
+               return d.deformer->solve(o);
+             });
            },
            py::arg("method") = "auto", py::arg("max_iterations") = 100, py::arg("tolerance") = 1e-8,
            py::arg("path") = true,
            "method: \"auto\" (as primo deform), \"global\", \"hierarchical\" or \"local\"; path: follow "
-           "large jumps in sub-steps as a drag would.")
-      .def("vertices", [](const PyDeformer& d) { return to_numpy(d.deformer->vertex_positions()); },
+           "large jumps in sub-steps as a drag would. Another thread's solve on the same Deformer "
+           "waits for this one.")
+      .def("vertices",
+           [](py::handle self) {
+             return to_numpy(with_deformer(self, [](PyDeformer& d) { return d.deformer->vertex_positions(); }));
+           },
            "The deformed vertices, an (n, 3) array.")
-      .def_property_readonly("energy", [](const PyDeformer& d) { return d.deformer->energy(); })
-      .def_property_readonly("n_handles", [](const PyDeformer& d) { return d.deformer->handles().size(); })
-      .def_property_readonly("n_forces", [](const PyDeformer& d) { return d.deformer->forces().size(); })
-      .def("reset", [](PyDeformer& d) { d.deformer->reset(); }, "Back to the rest pose.");
+      .def_property_readonly("energy",
+                             [](py::handle self) {
+                               return with_deformer(self, [](PyDeformer& d) { return d.deformer->energy(); });
+                             })
+      .def_property_readonly("n_handles",
+                             [](py::handle self) {
+                               return initialized<PyDeformer>(self, "Deformer").deformer->handles().size();
+                             })
+      .def_property_readonly("n_forces",
+                             [](py::handle self) {
+                               return initialized<PyDeformer>(self, "Deformer").deformer->forces().size();
+                             })
+      .def("reset", [](py::handle self) { with_deformer(self, [](PyDeformer& d) { d.deformer->reset(); }); },
+           "Back to the rest pose.");
 
   // --- Scenarios and sessions --------------------------------------------------------------
   m.def(
@@ -368,6 +524,7 @@ PYBIND11_MODULE(primo, m) {
         SolveReport report;
         {
           py::gil_scoped_release free_python;
+          std::shared_lock<std::shared_mutex> pool(g_thread_pool);
           report = deformer.solve(options);
         }
         return py::make_tuple(to_numpy(deformer.vertex_positions()), report);
@@ -382,6 +539,7 @@ PYBIND11_MODULE(primo, m) {
         ReplayResult result;
         {
           py::gil_scoped_release free_python;
+          std::shared_lock<std::shared_mutex> pool(g_thread_pool);
           result = replay_session(session, mesh);
         }
         py::dict out;

@@ -428,8 +428,8 @@ quit
                         &changes, &per_second, &previews),
             3);
   EXPECT_GT(previews, changes / 2) << "after the first frames the picture is the preview";
-  // Ten a second on a quiet machine (docs/performance.md); the bound leaves room for a CI
-  // machine whose other core runs other tests.
-  EXPECT_GE(per_second, 3.0);
+  // 7-8 a second on a quiet two-core machine under Xvfb (docs/editor.md), 1.3 with a
+  // two-thread benchmark beside it; a full-resolution cycle alone takes 0.6 s there.
+  EXPECT_GE(per_second, 1.0);
   expect_mesh_in_screenshot(dir + "/after.png");
 }

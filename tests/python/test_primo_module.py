@@ -164,6 +164,120 @@ def test_results_do_not_depend_on_the_thread_count():
     assert all(np.array_equal(r, results[0]) for r in results)
 
 
+def test_objects_never_initialised_raise_instead_of_crashing():
+    # Type.__new__(Type) makes an instance whose __init__ never ran: its methods and the
+    # functions taking it raise TypeError.
+    mesh = primo.Mesh.__new__(primo.Mesh)
+    with pytest.raises(TypeError, match="Mesh.__init__ was not called"):
+        mesh.n_faces
+    with pytest.raises(TypeError, match="Mesh.__init__ was not called"):
+        primo.Deformer(mesh)
+    d = primo.Deformer.__new__(primo.Deformer)
+    for use in (lambda: d.energy, lambda: d.vertices(), lambda: d.solve(), lambda: d.reset(),
+                lambda: d.set_handle_transform(0)):
+        with pytest.raises(TypeError, match="Deformer.__init__ was not called"):
+            use()
+    good = primo.Mesh(*tube())
+    for cls in (primo.Handle, primo.Force):
+        with pytest.raises(TypeError, match="__init__ was not called"):
+            primo.Deformer(good, [cls.__new__(cls)] if cls is primo.Handle else [],
+                           [cls.__new__(cls)] if cls is primo.Force else [])
+    with pytest.raises(TypeError, match="expected a primo.Mesh"):
+        primo.Mesh.n_faces.fget(42)
+
+
+def test_arguments_are_checked_as_the_scenario_reader_checks_them():
+    V, F = tube()
+    mesh = primo.Mesh(V, F)
+    # Indices: integers within range, never truncated floats or wrapped 64-bit values.
+    with pytest.raises(IndexError, match="out of range"):
+        primo.Handle(np.array([2**32 + 2]))
+    with pytest.raises(IndexError, match="out of range"):
+        primo.Handle([2**40])
+    with pytest.raises(IndexError, match="out of range"):
+        primo.Handle([-1])
+    with pytest.raises(TypeError, match="integer"):
+        primo.Handle(np.array([1.7]))
+    with pytest.raises(TypeError, match="integer"):
+        primo.Handle([1.0])
+    with pytest.raises(TypeError, match="integer"):
+        primo.Mesh(V, F.astype(np.float64))
+    with pytest.raises(IndexError, match="out of range"):
+        primo.Mesh(V, F.astype(np.uint64) + np.uint64(2**63))
+    bad_vertices = V.copy()
+    bad_vertices[3, 1] = np.nan
+    with pytest.raises(ValueError, match="row 3 is not finite"):
+        primo.Mesh(bad_vertices, F)
+    with pytest.raises(ValueError, match="not finite"):
+        mesh.with_vertices(bad_vertices)
+    # Materials, forces and solver settings.
+    for kwargs in ({"height": -1.0}, {"half_thickness": float("nan")}, {"width": 0.0},
+                   {"normal_blend": float("inf")},
+                   {"width_factors": np.zeros(len(F))}, {"height_factors": -np.ones(len(F))}):
+        with pytest.raises(ValueError):
+            primo.Deformer(mesh, [primo.Handle([0])], **kwargs)
+    with pytest.raises(ValueError, match="stiffness"):
+        primo.Force([1], stiffness=-1.0)
+    with pytest.raises(ValueError, match="offset"):
+        primo.Force([1], offset=[0, float("nan"), 0])
+    d = primo.Deformer(mesh, [primo.Handle([0])])
+    with pytest.raises(ValueError, match="method"):
+        d.solve(method="bogus")
+    with pytest.raises(ValueError, match="tolerance"):
+        d.solve(tolerance=float("nan"))
+    with pytest.raises(ValueError, match="max_iterations"):
+        d.solve(max_iterations=-1)
+    not_rigid = np.eye(4)
+    not_rigid[3, 0] = 0.5
+    with pytest.raises(ValueError, match="bottom row"):
+        d.set_handle_transform(0, matrix=not_rigid)
+    with pytest.raises(ValueError, match="finite"):
+        d.set_handle_transform(0, translate=[0, float("inf"), 0])
+    with pytest.raises(ValueError, match="threads"):
+        primo.set_thread_count(-2)
+    # Nothing refused changed the deformer.
+    assert d.solve().converged and d.energy == 0.0
+
+
+def test_threads_may_share_a_deformer_and_change_the_thread_count():
+    # Two threads solving one Deformer take turns, and a thread-count change waits for the
+    # running solves: every run ends where a solve on one thread ends.
+    import threading
+    V, F = tube(segments=40, bands=80)
+    mesh = primo.Mesh(V, F)
+    c = mesh.face_centroids()
+
+    def posed():
+        d = primo.Deformer(mesh, [primo.Handle(c[:, 1] < 0.1), primo.Handle(c[:, 1] > 1.9)])
+        d.set_handle_transform(1, axis=[1, 0, 0], angle_deg=70, translate=[0, -0.4, 0.4])
+        return d
+
+    reference = posed()
+    reference.solve(method="hierarchical", tolerance=1e-10, max_iterations=500)
+    shared = posed()
+    errors = []
+
+    def solve():
+        try:
+            shared.solve(method="hierarchical", tolerance=1e-10, max_iterations=500)
+            shared.vertices()
+        except Exception as e:  # pragma: no cover - reported below
+            errors.append(e)
+
+    def change_threads():
+        for threads in (1, 2, 0, 3, 0):
+            primo.set_thread_count(threads)
+
+    workers = [threading.Thread(target=solve) for _ in range(3)] + [threading.Thread(target=change_threads)]
+    for w in workers:
+        w.start()
+    for w in workers:
+        w.join()
+    primo.set_thread_count(0)
+    assert not errors
+    assert np.abs(shared.vertices() - reference.vertices()).max() < 1e-6 * mesh.bbox_diagonal
+
+
 def test_the_documented_example_poses_the_armadillos_arm(tmp_path):
     armadillo = os.path.join(SHARED_MESHES, "armadillo_29k.obj")
     if not os.path.exists(armadillo):
