@@ -24,6 +24,7 @@
 #include <set>
 
 #include "../src/core/mesh_import_assimp.h"
+#include "../src/core/scene_signature.h"
 #include "document.h"
 #include "primo/error.h"
 #include "primo/mesh_generators.h"
@@ -396,7 +397,7 @@ TEST(SceneImport, BadFilesGiveOneLineNamingTheFile) {
   const std::vector<Bad> bad = {
       {"truncated.glb", glb.substr(0, glb.size() / 2), "not a valid glTF file"},
       {"truncated.fbx", fbx.substr(0, fbx.size() / 2), "not a valid FBX file"},
-      {"garbage.glb", std::string(300, '\x7f'), "not a valid glTF file"},
+      {"garbage.glb", std::string(300, '\x7f'), "not a GLB (binary glTF) file"},
       {"garbage.gltf", "{ this is not json", "not a valid glTF file"},
       {"garbage.fbx", "Kaydara FBX Binary  \0garbage", "not a valid FBX file"},
       {"garbage.dae", "<COLLADA><library_geometries><geometry>", "not a valid COLLADA file"},
@@ -425,6 +426,41 @@ TEST(SceneImport, BadFilesGiveOneLineNamingTheFile) {
   fs::copy_file(source_path("assets/meshes/AnimatedMorphCube.gltf"), dir + "/cube/cube.gltf");
   expect_one_line_error([&] { load_mesh(dir + "/cube/cube.gltf"); }, dir + "/cube/cube.gltf",
                         "AnimatedMorphCube.bin");
+}
+
+TEST(SceneImport, EachExtensionOpensOnlyItsOwnFormat) {
+  // Assimp picks a reader by content: a .gltf that its glTF readers declined went on to
+  // whichever other reader claimed it (ASE and CSM text crashed there, a PLY header hung, a BVH
+  // skeleton loaded as a mesh). The extension's format is checked first, and named.
+  const std::string dir = temp_dir();
+  struct Renamed {
+    std::string name, bytes, needle;
+  };
+  const std::vector<Renamed> renamed = {
+      {"ply.gltf", "ply\nformat ascii 1.0\nelement vertex 3\n", "not a glTF file (it looks like PLY: rename it .ply)"},
+      {"obj.fbx", "# a cube\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "not an FBX file (it looks like OBJ: rename it .obj)"},
+      {"off.dae", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", "not a COLLADA file (it looks like OFF: rename it .off)"},
+      {"ase.gltf", "*3DSMAX_ASCIIEXPORT 200\n*SCENE {\n}\n", "(it looks like ASE, which PriMo does not read)"},
+      {"bvh.glb", "HIERARCHY\nROOT hips\n{\n}\n", "not a GLB (binary glTF) file (it looks like BVH"},
+      {"opengex.gltf", "Metric {string {\"distance\"}}\nGeometryNode {}\n", "it looks like OpenGEX"},
+      {"stl.3mf", "solid cube\nendsolid cube\n", "not a 3MF file (it looks like STL: rename it .stl)"},
+      {"glb.gltf", "glTF\x02\0\0\0", "(it looks like GLB (binary glTF): rename it .glb)"},
+      {"noise.fbx", std::string(64, '\x01'), "its first bytes match no format PriMo reads"},
+  };
+  for (const Renamed& r : renamed) {
+    const std::string path = dir + "/" + r.name;
+    write_text(path, r.bytes);
+    expect_one_line_error([&] { load_mesh(path); }, path, r.needle);
+    expect_one_line_error(
+        [&] { detail::mesh_from_scene_soup(detail::read_scene_bytes(r.bytes, path), path); }, path,
+        r.needle);
+  }
+  // What passes the signature reaches only the format's own readers: JSON that is no glTF.
+  const std::string json = dir + "/other.gltf";
+  write_text(json, R"({"vertices": [[0, 0, 0]], "faces": [[0, 0, 0]]})");
+  expect_one_line_error([&] { load_mesh(json); }, json, "not a valid glTF file");
+  EXPECT_EQ(detail::format_of_bytes("ply\nformat ascii 1.0\n"), "PLY");
+  EXPECT_EQ(detail::format_of_bytes("\xEF\xBB\xBF  {\"asset\": {}}"), "glTF");
 }
 
 // What the fuzz targets do: cut and flipped bytes of every sample give a mesh or an Error,

@@ -25,6 +25,7 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <assimp/BaseImporter.h>
 #include <assimp/Importer.hpp>
 #include <cctype>
 #include <cerrno>
@@ -33,13 +34,16 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <new>
+#include <set>
 #include <stdexcept>
 #include <unordered_map>
 #include <vector>
 
 #include "gltf_buffer_files.h"
 #include "mesh_export_gltf.h"
+#include "scene_signature.h"
 #include "primo/error.h"
 #include "primo/input_files.h"
 #include "primo/mesh_import.h"
@@ -439,12 +443,39 @@ void check_collada_counts(std::string_view bytes, const std::string& path) {
   }
 }
 
+// Leaves `importer` only the readers of the format `path`'s extension names (glTF has two,
+// for its versions 1 and 2): bytes they decline are refused, not passed on to whichever of
+// Assimp's other readers claims them (scene_signature.h).
+void keep_only_readers_of(Assimp::Importer& importer, const std::string& path) {
+  const std::string ext = lowercase_extension(path).substr(1);
+  std::vector<Assimp::BaseImporter*> others;
+  for (size_t i = 0; i < importer.GetImporterCount(); ++i) {
+    Assimp::BaseImporter* reader = importer.GetImporter(i);
+    std::set<std::string> extensions;
+    reader->GetExtensionList(extensions);
+    if (extensions.count(ext) == 0) others.push_back(reader);
+  }
+  // Unregistering hands a reader back to its caller.
+  for (Assimp::BaseImporter* reader : others)
+    if (importer.UnregisterLoader(reader) == aiReturn_SUCCESS) delete reader;
+}
+
+// The first bytes of the file at `path` (after check_input_file).
+std::string file_head(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string head(kSignatureBytes, '\0');
+  in.read(head.data(), std::streamsize(head.size()));
+  head.resize(size_t(std::max<std::streamsize>(in.gcount(), 0)));
+  return head;
+}
+
 // Assimp logs only through its DefaultLogger, which PriMo never creates: nothing is printed.
 // Its importers throw internally and return no scene; the catches are for what escapes them.
 template <typename Read>
 SceneSoup read_with_assimp(const std::string& path, Read read) {
   try {
     Assimp::Importer importer;
+    keep_only_readers_of(importer, path);
     const aiScene* scene = read(importer, aiProcess_ValidateDataStructure);
     if (!scene) {
       const std::string message = assimp_message(importer.GetErrorString());
@@ -467,6 +498,9 @@ SceneSoup read_with_assimp(const std::string& path, Read read) {
 SceneSoup read_scene_file(const std::string& path) {
   // Assimp opens the file itself (a .gltf also its buffers): it must not meet a pipe or a device.
   check_input_file(path);
+  const std::string head = file_head(path);
+  if (head.empty()) fail(path, "cannot read: the file is empty");
+  check_scene_signature(head, path);
   const std::string ext = lowercase_extension(path);
   if (ext == ".dae") check_collada_counts(read_input_file(path), path);
   if (ext == ".gltf" || ext == ".glb")
@@ -478,6 +512,7 @@ SceneSoup read_scene_file(const std::string& path) {
 
 SceneSoup read_scene_bytes(std::string_view bytes, const std::string& path) {
   if (bytes.empty()) fail(path, "cannot read: the file is empty");
+  check_scene_signature(bytes.substr(0, kSignatureBytes), path);
   const std::string ext = lowercase_extension(path);
   if (ext == ".dae") check_collada_counts(bytes, path);
   if (ext == ".gltf" || ext == ".glb") check_gltf_buffer_files(bytes, path);
