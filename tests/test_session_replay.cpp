@@ -134,6 +134,49 @@ TEST_F(ReplayCli, WritesTheFinalMeshAndFrames) {
   EXPECT_EQ(read_text(dir + "/a.obj"), read_text(dir + "/b.obj"));  // bitwise the same
 }
 
+TEST_F(ReplayCli, FramesNeverReplaceInputsOrOutputs) {
+  // The session's own mesh, -o and --stats under a frame's name in the frames folder, a
+  // --frames that is a file, a folder where a frame goes: each refused before anything is
+  // written, and the file that was there kept.
+  fs::create_directories(dir + "/fr");
+  fs::copy_file(dir + "/bar.obj", dir + "/fr/frame_000000.obj");
+  std::string moved = text;
+  moved.replace(moved.find("\"mesh\": \"bar.obj\""), 17, "\"mesh\": \"fr/frame_000000.obj\"");
+  primo::test::write_text(dir + "/moved.session.json", moved);
+  const std::string mesh_before = read_text(dir + "/fr/frame_000000.obj");
+  CommandResult r = run_primo("replay " + dir + "/moved.session.json -o " + dir + "/out.obj --frames " + dir + "/fr");
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.err.find("the session's mesh lies in --frames"), std::string::npos) << r.err;
+  EXPECT_EQ(read_text(dir + "/fr/frame_000000.obj"), mesh_before);
+  EXPECT_FALSE(fs::exists(dir + "/out.obj"));
+
+  for (const std::string& option : {std::string("-o"), std::string("--stats")}) {
+    fs::create_directories(dir + "/fr2");
+    const std::string target = dir + "/fr2/frame_000004.obj";
+    primo::test::write_text(target, "kept");
+    const std::string args = option == "-o" ? "-o " + target : "-o " + dir + "/out.obj --stats " + target;
+    r = run_primo("replay " + dir + "/pose.session.json " + args + " --frames " + dir + "/fr2 --every 4");
+    EXPECT_NE(r.exit_code, 0) << option;
+    EXPECT_NE(r.err.find(option + " lies in --frames"), std::string::npos) << r.err;
+    EXPECT_EQ(read_text(target), "kept");
+    EXPECT_FALSE(fs::exists(dir + "/out.obj"));
+  }
+
+  primo::test::write_text(dir + "/not-a-folder", "x");
+  r = run_primo("replay " + dir + "/pose.session.json -o " + dir + "/out.obj --frames " + dir + "/not-a-folder");
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.err.find("--frames names a file, not a folder"), std::string::npos) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+
+  primo::test::write_text(dir + "/final.obj", "kept");
+  fs::create_directories(dir + "/fr3/frame_000000.obj");
+  r = run_primo("replay " + dir + "/pose.session.json -o " + dir + "/final.obj --frames " + dir + "/fr3");
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.err.find("a folder is where the frame goes"), std::string::npos) << r.err;
+  EXPECT_EQ(read_text(dir + "/final.obj"), "kept");
+  EXPECT_EQ(files_in(dir + "/fr3"), 1u);  // no frame and no temporary folder left
+}
+
 TEST_F(ReplayCli, BadSessionWritesNothing) {
   std::string bad = text;
   bad.replace(bad.find("\"handle\":1"), 10, "\"handle\":9");

@@ -9,6 +9,8 @@
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -64,6 +66,32 @@ void limit_threads(int threads) {
 // More frame files than this is a mistake (--every forgotten on a long session), not a request.
 constexpr long kMaxFrameFiles = 100000;
 
+// Whether `path` names a frame file of `format` in the folder `frames` ("frame_" and six or
+// more digits), which the replay would write over.
+bool is_frame_file(const std::string& path, const std::string& frames, const std::string& format) {
+  if (path.empty()) return false;
+  std::error_code error;
+  const fs::path folder = fs::weakly_canonical(fs::absolute(frames), error);
+  const fs::path file = fs::weakly_canonical(fs::absolute(path), error);
+  if (error || file.parent_path() != folder) return false;
+  const std::string name = file.filename().string();
+  const std::string prefix = "frame_", suffix = "." + format;
+  if (name.size() < prefix.size() + 6 + suffix.size() || name.rfind(prefix, 0) != 0 ||
+      name.compare(name.size() - suffix.size(), suffix.size(), suffix) != 0)
+    return false;
+  const std::string digits = name.substr(prefix.size(), name.size() - prefix.size() - suffix.size());
+  return std::all_of(digits.begin(), digits.end(), [](unsigned char c) { return std::isdigit(c); });
+}
+
+// Refuses, before any work, every input or output that a frame file would replace.
+void check_frames_spare(const std::string& frames, const std::string& format,
+                        const std::vector<NamedFile>& files) {
+  for (const NamedFile& f : files)
+    if (is_frame_file(f.path, frames, format))
+      throw Error(f.path + ": " + f.role + " lies in --frames " + frames +
+                  " under a frame's name, which the replay would write over; nothing was written");
+}
+
 int run_replay(const ReplayArguments& args) {
   limit_threads(args.threads);
   const auto start = std::chrono::steady_clock::now();
@@ -74,6 +102,9 @@ int run_replay(const ReplayArguments& args) {
     const fs::path frames_parent = fs::absolute(fs::path(args.frames)).parent_path();
     if (!fs::is_directory(frames_parent))
       throw Error(args.frames + ": the folder " + frames_parent.string() + " does not exist");
+    std::error_code error;
+    if (fs::exists(args.frames, error) && !fs::is_directory(args.frames, error))
+      throw Error(args.frames + ": --frames names a file, not a folder; nothing was written");
   }
   const std::vector<NamedFile> outputs = {{"-o", args.output}, {"--stats", args.stats}, {"--frames", args.frames}};
   check_distinct_files(outputs, {{"the session", args.session}, {"--mesh", args.mesh}});
@@ -81,6 +112,11 @@ int run_replay(const ReplayArguments& args) {
   check_distinct_files(outputs, {{"the session", args.session},
                                  {"--mesh", args.mesh},
                                  {"the session's mesh", session.mesh_path}});
+  if (!args.frames.empty())
+    check_frames_spare(args.frames, args.frame_format,
+                       {{"the session", args.session}, {"--mesh", args.mesh},
+                        {"the session's mesh", session.mesh_path}, {"-o", args.output},
+                        {"--stats", args.stats}});
   if (!args.frames.empty() && session.frames() / args.every + 1 > kMaxFrameFiles)
     throw Error(args.session + ": --frames --every " + std::to_string(args.every) + " would write " +
                 std::to_string(session.frames() / args.every + 1) + " files (at most " +
@@ -130,6 +166,14 @@ int run_replay(const ReplayArguments& args) {
     for (auto v : final_mesh.vertices()) final_mesh.set_point(v, result.positions[size_t(v.idx())]);
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    // Every frame's place takes a file (a folder there would make its rename fail after the
+    // final mesh was written).
+    for (const std::string& name : written) {
+      std::error_code error;
+      const fs::path target = fs::path(args.frames) / name;
+      if (fs::is_directory(fs::symlink_status(target, error)))
+        throw Error(target.string() + ": a folder is where the frame goes; nothing was written");
+    }
     // The final mesh and the statistics together, or neither; then the frames.
     StagedOutputs out;
     out.stage_mesh(args.output, final_mesh);
