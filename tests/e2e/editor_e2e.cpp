@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 #include <stb_image.h>  // implementation in libstb
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -207,6 +208,25 @@ TEST(EditorE2E, ScreenshotFromTheCommandLine) {
             1);
   EXPECT_FALSE(fs::exists(dir + "/none.png"));
   EXPECT_NE(read_text(dir + "/broken.log").find("broken.json"), std::string::npos);
+
+  // A named pipe at the path stays a pipe (it was renamed over with a regular file), and a
+  // link planted where the PNG's temporary file used to be (a fixed name beside the target)
+  // leads nowhere: the file it points to is not written.
+  const std::string pipe = dir + "/pipe.png";
+  fs::remove(pipe);
+  ASSERT_EQ(::mkfifo(pipe.c_str(), 0600), 0);
+  EXPECT_NE(run(kPrimo + " edit " + scenario + " --screenshot " + pipe + " > " + dir + "/pipe.log 2>&1"), 0);
+  EXPECT_TRUE(fs::is_fifo(pipe));
+  EXPECT_NE(read_text(dir + "/pipe.log").find("pipe.png"), std::string::npos) << read_text(dir + "/pipe.log");
+  write_text(dir + "/victim.txt", "kept");
+  fs::remove(dir + "/.linked.png.tmp.png");
+  fs::create_symlink(dir + "/victim.txt", dir + "/.linked.png.tmp.png");
+  ASSERT_EQ(run(kPrimo + " edit " + scenario + " --screenshot " + dir + "/linked.png > " + dir +
+                "/linked.log 2>&1"),
+            0)
+      << read_text(dir + "/linked.log");
+  EXPECT_EQ(read_text(dir + "/victim.txt"), "kept");
+  expect_mesh_in_screenshot(dir + "/linked.png");
 }
 
 TEST(EditorE2E, AScriptThatWaitsTooLongEndsAtItsTimeout) {

@@ -4,11 +4,12 @@
 
 #include <algorithm>
 #include <cstdio>
-#include <filesystem>
+#include <string>
 #include <vector>
 
 #include "gl.h"
 #include "primo/error.h"
+#include "primo/output_files.h"
 
 namespace primo::editor {
 
@@ -23,19 +24,20 @@ void save_screenshot(const std::string& path, int x, int y, int width, int heigh
   for (int r = 0; r < height; ++r)
     std::copy_n(pixels.begin() + size_t(height - 1 - r) * row, row, flipped.begin() + size_t(r) * row);
 
-  namespace fs = std::filesystem;
-  const fs::path target = fs::absolute(path);
-  if (!fs::is_directory(target.parent_path()))
-    throw Error(path + ": the folder " + target.parent_path().string() + " does not exist");
-  const fs::path temp = target.parent_path() / ("." + target.filename().string() + ".tmp.png");
-  if (!stbi_write_png(temp.c_str(), width, height, 3, flipped.data(), int(row))) {
-    std::error_code ignored;
-    fs::remove(temp, ignored);
-    throw Error(path + ": cannot write the PNG");
-  }
-  std::error_code ec;
-  fs::rename(temp, target, ec);
-  if (ec) throw Error(path + ": cannot write the PNG (" + ec.message() + ")");
+  // Encoded in memory and written through the core's staged writer: a special file at the
+  // path (a pipe, a device) is refused instead of replaced by a regular file, and the
+  // temporary file is created exclusively, so a link planted under its name is refused, not
+  // followed (a fixed temporary name beside the target, written through, followed one).
+  check_output_path(path);
+  std::string png;
+  const auto append = [](void* context, void* data, int size) {
+    static_cast<std::string*>(context)->append(static_cast<const char*>(data), size_t(size));
+  };
+  if (!stbi_write_png_to_func(append, &png, width, height, 3, flipped.data(), int(row)))
+    throw Error(path + ": cannot encode the PNG");
+  StagedOutputs out;
+  out.stage(path, png);
+  out.commit();
 }
 
 }  // namespace primo::editor
