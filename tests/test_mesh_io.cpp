@@ -591,6 +591,33 @@ TEST(MeshIoSave, UnknownExtensionThrowsBeforeWriting) {
   EXPECT_EQ(std::vector<std::string>{"out.xyz"}, folder_entries(folder));
 }
 
+TEST(MeshIoSave, FloatFormatsRefuseWhatRoundingWouldMakeUnreadable) {
+  // A sliver that is a valid face in doubles and zero area in 32-bit floats (1 + 1e-9 rounds
+  // to 1), and a mesh whose coordinates overflow floats: PLY, STL and glTF store floats, and
+  // such a file would be refused by every reader, PriMo's included; OBJ keeps full precision.
+  PolygonSoup sliver;
+  sliver.points = {{1, 0, 0}, {1 + 1e-9, 0, 0}, {1, 1e-9, 0}};
+  sliver.faces = {{0, 1, 2}};
+  PolygonSoup huge;
+  huge.points = {{0, 0, 0}, {1e39, 0, 0}, {0, 1e39, 0}};
+  huge.faces = {{0, 1, 2}};
+  const std::string folder = temp_dir();
+  for (const PolygonSoup* soup : {&sliver, &huge}) {
+    const primo::Mesh mesh = primo::mesh_from_soup(*soup, "test");
+    for (const std::string ext : {".ply", ".stl", ".gltf", ".glb"}) {
+      const std::string path = folder + "/out" + ext;
+      write_text(path, "kept");
+      expect_mentions(message_of_save(mesh, path), {path, "32-bit floats", "save as .obj"});
+      EXPECT_EQ(read_text(path), "kept");
+    }
+    primo::save_mesh(mesh, folder + "/full.obj");
+    EXPECT_EQ(primo::load_mesh(folder + "/full.obj").n_faces(), 1u);
+  }
+  // A well-shaped mesh is written as before.
+  primo::save_mesh(mixed_mesh(), folder + "/mixed.ply");
+  EXPECT_EQ(primo::load_mesh(folder + "/mixed.ply").n_vertices(), 9u);
+}
+
 TEST(MeshIoSave, ReplacesAnExistingFile) {
   const std::string folder = temp_dir();
   const std::string path = folder + "/out.off";

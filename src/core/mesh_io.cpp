@@ -536,6 +536,36 @@ Mesh load_mesh(const std::string& path) {
   }
 }
 
+namespace {
+
+// PLY (as OpenMesh writes it), STL and glTF store 32-bit floats: a mesh whose faces rounding
+// to them makes degenerate (or whose coordinates overflow them) would be written and then
+// refused by every reader, PriMo's own included. Checked on the faces as they are written.
+void check_float_rounding(const Mesh& mesh, const std::string& path, const char* format) {
+  PolygonSoup soup;
+  soup.points.reserve(mesh.n_vertices());
+  for (auto v : mesh.vertices()) {
+    const Vec3& p = mesh.point(v);
+    soup.points.emplace_back(double(float(p.x())), double(float(p.y())), double(float(p.z())));
+  }
+  soup.faces.reserve(mesh.n_faces());
+  for (auto f : mesh.faces()) {
+    std::vector<int> face;
+    for (auto v : f.vertices()) face.push_back(v.idx());
+    soup.faces.push_back(std::move(face));
+  }
+  try {
+    detail::check_soup_geometry(soup, path);
+  } catch (const Error& e) {
+    std::string why = e.what();
+    if (why.rfind(path + ": ", 0) == 0) why = why.substr(path.size() + 2);
+    fail(path, std::string("cannot save: ") + format + " stores 32-bit floats, and rounded to them " +
+                   why + "; save as .obj, .off or .om (full precision) instead");
+  }
+}
+
+}  // namespace
+
 std::string mesh_file_bytes(const Mesh& mesh, const std::string& path) {
   const Format format = format_or_fail(path, "cannot save");
   if (format == Format::Scene)
@@ -545,13 +575,20 @@ std::string mesh_file_bytes(const Mesh& mesh, const std::string& path) {
     switch (format) {
       case Format::Obj: return obj_text(mesh);
       case Format::Off: return off_text(mesh);
-      case Format::Ply: return openmesh_bytes(mesh, path, "ply", OpenMesh::IO::Options::Default);
+      case Format::Ply:
+        check_float_rounding(mesh, path, "PLY");
+        return openmesh_bytes(mesh, path, "ply", OpenMesh::IO::Options::Default);
       case Format::Om: return openmesh_bytes(mesh, path, "om", OpenMesh::IO::Options::Default);
       case Format::Stl:
         // Binary STL: exact float32, a fraction of the size of OpenMesh's 10-digit ASCII.
-        return openmesh_bytes(fan_triangulated(mesh), path, "stl", OpenMesh::IO::Options::Binary);
+      {
+        const Mesh triangles = fan_triangulated(mesh);
+        check_float_rounding(triangles, path, "STL");
+        return openmesh_bytes(triangles, path, "stl", OpenMesh::IO::Options::Binary);
+      }
       case Format::Gltf:
       case Format::Glb:
+        check_float_rounding(mesh, path, "glTF");
         return detail::gltf_bytes(mesh, format == Format::Glb, fs::path(path).stem().string(), path);
       case Format::Scene:
         break;  // refused above

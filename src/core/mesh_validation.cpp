@@ -283,6 +283,13 @@ void check_face_areas(const PolygonSoup& soup, const std::string& source) {
 
 }  // namespace
 
+namespace detail {
+void check_soup_geometry(const PolygonSoup& soup, const std::string& source) {
+  check_coordinates_finite(soup, source);
+  check_face_areas(soup, source);
+}
+}  // namespace detail
+
 Mesh mesh_from_soup(const PolygonSoup& soup, const std::string& source) {
   if (soup.faces.empty())
     fail(source, "empty mesh: no faces (" + std::to_string(soup.points.size()) + " vertices)");
