@@ -463,6 +463,54 @@ TEST(SceneImport, EachExtensionOpensOnlyItsOwnFormat) {
   EXPECT_EQ(detail::format_of_bytes("\xEF\xBB\xBF  {\"asset\": {}}"), "glTF");
 }
 
+TEST(SceneImport, AGltfNodeTreeIsCheckedBeforeAssimpWalksIt) {
+  // Each of these crashed Assimp's glTF reader (stack overflow) or asked it for 2^40 instances;
+  // now each is refused in one line naming the rule, and a sound tree still loads.
+  const std::string dir = temp_dir();
+  auto chain = [](int n, int copies) {  // node k lists node k + 1 `copies` times
+    std::string nodes = "[";
+    for (int k = 0; k < n; ++k) {
+      nodes += k ? ", {" : "{";
+      if (k + 1 < n) {
+        nodes += "\"children\": [";
+        for (int c = 0; c < copies; ++c) nodes += (c ? ", " : "") + std::to_string(k + 1);
+        nodes += "]";
+      } else {
+        nodes += "\"mesh\": 0";
+      }
+      nodes += "}";
+    }
+    return nodes + "]";
+  };
+  struct Bad {
+    std::string name, bytes, needle;
+  };
+  const std::vector<Bad> bad = {
+      {"deep-json.gltf", "{\"asset\": " + std::string(200000, '[') + std::string(200000, ']') + "}",
+       "nested deeper than 64 levels"},
+      {"deep-nodes.gltf", cube_gltf(chain(20000, 1), "[0]"), "deeper than 1000 levels"},
+      {"bomb.gltf", cube_gltf(chain(40, 2), "[0]"), "expands to more than 1000000 node instances"},
+      {"cycle.gltf", cube_gltf(R"([{"children": [1]}, {"children": [0], "mesh": 0}])", "[0]"),
+       "its node tree has a cycle"},
+      {"self.gltf", cube_gltf(R"([{"children": [0], "mesh": 0}])", "[0]"), "its node tree has a cycle"},
+      {"missing-child.gltf", cube_gltf(R"([{"children": [5], "mesh": 0}])", "[0]"),
+       "node 0 lists a child 5 that does not exist"},
+  };
+  for (const Bad& b : bad) {
+    const std::string path = dir + "/" + b.name;
+    write_text(path, b.bytes);
+    expect_one_line_error([&] { load_mesh(path); }, path, b.needle);
+    expect_one_line_error(
+        [&] { detail::mesh_from_scene_soup(detail::read_scene_bytes(b.bytes, path), path); }, path,
+        b.needle);
+  }
+  // A node listed by two parents is two instances: within the limit, both are taken.
+  const std::string shared = dir + "/shared.gltf";
+  write_text(shared, cube_gltf(R"([{"children": [2]}, {"children": [2], "translation": [3, 0, 0]},
+                                   {"mesh": 0}])", "[0, 1]"));
+  EXPECT_EQ(load_mesh(shared).n_faces(), 24u);
+}
+
 // What the fuzz targets do: cut and flipped bytes of every sample give a mesh or an Error,
 // never a crash, hang or other exception.
 TEST(SceneImport, DamagedBytesGiveAnErrorOrAMesh) {

@@ -41,8 +41,12 @@ std::string_view glb_json(std::string_view bytes) {
 
 }  // namespace
 
+std::string_view gltf_json_text(std::string_view bytes) {
+  return is_glb(bytes) ? glb_json(bytes) : bytes;
+}
+
 void check_gltf_buffer_files(std::string_view bytes, const std::string& path) {
-  const std::string_view text = is_glb(bytes) ? glb_json(bytes) : bytes;
+  const std::string_view text = gltf_json_text(bytes);
   // Only the buffers are kept, and data URIs shortened: a .gltf may embed hundreds of MB.
   using Event = nlohmann::json::parse_event_t;
   const nlohmann::json json = nlohmann::json::parse(

@@ -15,6 +15,10 @@ namespace primo::detail {
 // `path`. What does not parse is left to Assimp, which names the problem.
 void check_gltf_buffer_files(std::string_view bytes, const std::string& path);
 
+// The JSON text of a .gltf (all of `bytes`) or of a .glb's JSON chunk (as much as `bytes` hold;
+// empty without one).
+std::string_view gltf_json_text(std::string_view bytes);
+
 // The part of the file at `path` that check_gltf_buffer_files needs: the whole of a .gltf,
 // the header and JSON chunk of a .glb (`binary`; not its binary chunk, which may be large).
 std::string read_gltf_json_part(const std::string& path, bool binary);

@@ -42,6 +42,7 @@
 #include <vector>
 
 #include "gltf_buffer_files.h"
+#include "gltf_limits.h"
 #include "mesh_export_gltf.h"
 #include "scene_signature.h"
 #include "primo/error.h"
@@ -503,8 +504,11 @@ SceneSoup read_scene_file(const std::string& path) {
   check_scene_signature(head, path);
   const std::string ext = lowercase_extension(path);
   if (ext == ".dae") check_collada_counts(read_input_file(path), path);
-  if (ext == ".gltf" || ext == ".glb")
-    check_gltf_buffer_files(read_gltf_json_part(path, ext == ".glb"), path);
+  if (ext == ".gltf" || ext == ".glb") {
+    const std::string json_part = read_gltf_json_part(path, ext == ".glb");
+    check_gltf_node_tree(json_part, path);
+    check_gltf_buffer_files(json_part, path);
+  }
   return read_with_assimp(path, [&](Assimp::Importer& importer, unsigned flags) {
     return importer.ReadFile(path, flags);
   });
@@ -515,7 +519,10 @@ SceneSoup read_scene_bytes(std::string_view bytes, const std::string& path) {
   check_scene_signature(bytes.substr(0, kSignatureBytes), path);
   const std::string ext = lowercase_extension(path);
   if (ext == ".dae") check_collada_counts(bytes, path);
-  if (ext == ".gltf" || ext == ".glb") check_gltf_buffer_files(bytes, path);
+  if (ext == ".gltf" || ext == ".glb") {
+    check_gltf_node_tree(bytes, path);
+    check_gltf_buffer_files(bytes, path);
+  }
   const std::string hint = ext.substr(1);
   return read_with_assimp(path, [&](Assimp::Importer& importer, unsigned flags) {
     return importer.ReadFileFromMemory(bytes.data(), bytes.size(), flags, hint.c_str());
