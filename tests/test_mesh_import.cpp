@@ -428,6 +428,17 @@ TEST(SceneImport, BadFilesGiveOneLineNamingTheFile) {
                         "AnimatedMorphCube.bin");
 }
 
+// `bytes` written to `path` and read from the file and from memory: both one line naming the
+// file and saying `needle`.
+void expect_refused_from_file_and_bytes(const std::string& path, const std::string& bytes,
+                                        const std::string& needle) {
+  write_text(path, bytes);
+  expect_one_line_error([&] { load_mesh(path); }, path, needle);
+  expect_one_line_error(
+      [&] { detail::mesh_from_scene_soup(detail::read_scene_bytes(bytes, path), path); }, path,
+      needle);
+}
+
 TEST(SceneImport, EachExtensionOpensOnlyItsOwnFormat) {
   // Assimp picks a reader by content: a .gltf that its glTF readers declined went on to
   // whichever other reader claimed it (ASE and CSM text crashed there, a PLY header hung, a BVH
@@ -447,14 +458,7 @@ TEST(SceneImport, EachExtensionOpensOnlyItsOwnFormat) {
       {"glb.gltf", "glTF\x02\0\0\0", "(it looks like GLB (binary glTF): rename it .glb)"},
       {"noise.fbx", std::string(64, '\x01'), "its first bytes match no format PriMo reads"},
   };
-  for (const Renamed& r : renamed) {
-    const std::string path = dir + "/" + r.name;
-    write_text(path, r.bytes);
-    expect_one_line_error([&] { load_mesh(path); }, path, r.needle);
-    expect_one_line_error(
-        [&] { detail::mesh_from_scene_soup(detail::read_scene_bytes(r.bytes, path), path); }, path,
-        r.needle);
-  }
+  for (const Renamed& r : renamed) expect_refused_from_file_and_bytes(dir + "/" + r.name, r.bytes, r.needle);
   // What passes the signature reaches only the format's own readers: JSON that is no glTF.
   const std::string json = dir + "/other.gltf";
   write_text(json, R"({"vertices": [[0, 0, 0]], "faces": [[0, 0, 0]]})");
@@ -496,14 +500,7 @@ TEST(SceneImport, AGltfNodeTreeIsCheckedBeforeAssimpWalksIt) {
       {"missing-child.gltf", cube_gltf(R"([{"children": [5], "mesh": 0}])", "[0]"),
        "node 0 lists a child 5 that does not exist"},
   };
-  for (const Bad& b : bad) {
-    const std::string path = dir + "/" + b.name;
-    write_text(path, b.bytes);
-    expect_one_line_error([&] { load_mesh(path); }, path, b.needle);
-    expect_one_line_error(
-        [&] { detail::mesh_from_scene_soup(detail::read_scene_bytes(b.bytes, path), path); }, path,
-        b.needle);
-  }
+  for (const Bad& b : bad) expect_refused_from_file_and_bytes(dir + "/" + b.name, b.bytes, b.needle);
   // A node listed by two parents is two instances: within the limit, both are taken.
   const std::string shared = dir + "/shared.gltf";
   write_text(shared, cube_gltf(R"([{"children": [2]}, {"children": [2], "translation": [3, 0, 0]},
