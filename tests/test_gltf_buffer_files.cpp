@@ -56,7 +56,7 @@ TEST(GltfBufferFiles, AGltfWithItsBufferFileBesideItLoads) {
   // Relative to the working directory when the path has no folder, as Assimp looks it up.
   const fs::path before = fs::current_path();
   fs::current_path(dir);
-  EXPECT_NO_THROW(detail::check_gltf_buffer_files(read_text("cube.gltf"), "cube.gltf"));
+  EXPECT_NO_THROW(detail::check_gltf_buffer_files(detail::gltf_outline(read_text("cube.gltf"), "cube.gltf"), "cube.gltf"));
   fs::current_path(before);
 }
 
@@ -98,19 +98,19 @@ TEST(GltfBufferFiles, EmbeddedBuffersAndUnparsableJsonAreLeftAlone) {
   nlohmann::json json = {
       {"asset", {{"version", "2.0"}}},
       {"buffers", {{{"uri", "data:application/octet-stream;base64,AAAA"}, {"byteLength", 3}}}}};
-  EXPECT_NO_THROW(detail::check_gltf_buffer_files(json.dump(), dir + "/a.gltf"));
-  EXPECT_NO_THROW(detail::check_gltf_buffer_files("{ not json", dir + "/b.gltf"));
-  EXPECT_NO_THROW(detail::check_gltf_buffer_files("glTF\x02", dir + "/c.glb"));
+  EXPECT_NO_THROW(detail::check_gltf_buffer_files(detail::gltf_outline(json.dump(), dir + "/a.gltf"), dir + "/a.gltf"));
+  EXPECT_NO_THROW(detail::check_gltf_buffer_files(detail::gltf_outline("{ not json", dir + "/b.gltf"), dir + "/b.gltf"));
+  EXPECT_NO_THROW(detail::check_gltf_buffer_files(detail::gltf_outline("glTF\x02", dir + "/c.glb"), dir + "/c.glb"));
   json["buffers"][0]["uri"] = "missing.bin";
   EXPECT_NE(error_of([&] {
-              detail::check_gltf_buffer_files(json.dump(), dir + "/a.gltf");
+              detail::check_gltf_buffer_files(detail::gltf_outline(json.dump(), dir + "/a.gltf"), dir + "/a.gltf");
             }).find(dir + "/a.gltf: buffer 0 (missing.bin): " + dir + "/missing.bin: cannot open"),
             std::string::npos);
   // glTF 1 keeps its buffers in an object by id.
   const nlohmann::json v1 = {{"asset", {{"version", "1.0"}}},
                              {"buffers", {{"geometry", {{"uri", "v1.bin"}}}}}};
   EXPECT_NE(error_of([&] {
-              detail::check_gltf_buffer_files(v1.dump(), dir + "/v1.gltf");
+              detail::check_gltf_buffer_files(detail::gltf_outline(v1.dump(), dir + "/v1.gltf"), dir + "/v1.gltf");
             }).find(dir + "/v1.gltf: buffer 'geometry' (v1.bin): " + dir + "/v1.bin: cannot open"),
             std::string::npos);
   // A .glb whose header claims a JSON chunk longer than the file: only what is there is read.

@@ -256,6 +256,9 @@ class Deformer {
   // Carries a preview into state_ (a solve goes on from it) or drops it (the state is set).
   void end_preview();
   void cancel_preview();
+  // The state is the one for the targets set now (solved_transforms_, solved_offsets_): a
+  // later solve follows no path to them.
+  void solved_for_current_targets();
   double preview_energy_ = 0.0;
   // The last solve converged with this method and tolerance, and nothing changed since.
   bool settled_ = false;

@@ -173,7 +173,7 @@ class HierarchicalSolver {
   int drag_factor_lag() const;
   // Coarse Newton steps per cycle: coarse_iterations on every visit of the coarsest level,
   // which each intermediate level visits intermediate_cycles times.
-  int coarse_steps_per_cycle() const;
+  int coarse_steps_per_cycle() const { return coarse_steps_from(1); }
   int bodies(int level) const;  // level 0 = fine
   // A level's system as its last restriction left it (level 0: the fine system).
   const RigidSystem& system(int level) const;
@@ -200,7 +200,9 @@ class HierarchicalSolver {
   // clusters' motions into it, from where cycles converge to the full resolution's minimum.
   // `level`: a coarse level, 1 to levels() - 1 (-1: automatic_preview_level). The bodies that
   // are not free must come first in the fine system, as the Deformer's handles do.
-  void begin_preview(const std::vector<BodyState>& fine_state, int level = -1);
+  // `fine_energy`: the energy of `fine_state` when the caller knows it (NaN: computed here).
+  void begin_preview(const std::vector<BodyState>& fine_state, int level = -1,
+                     double fine_energy = std::numeric_limits<double>::quiet_NaN());
   // One frame at the current targets: the fine state's locked bodies (moved by the caller)
   // and springs are taken over, then one cycle on the preview's levels. Returns the fine
   // energy of the picture (exact: clusters move their fine prisms rigidly).
@@ -215,8 +217,7 @@ class HierarchicalSolver {
   int automatic_preview_level() const;
   // A fine body's state as the preview shows it (previewing() only).
   BodyState previewed(const std::vector<BodyState>& fine_state, int body) const {
-    const BodyState& base = size_t(body) < preview_anchor_.size() ? preview_anchor_[size_t(body)]
-                                                                  : fine_state[size_t(body)];
+    const BodyState& base = preview_base(fine_state, body);
     const int c = preview_cluster_[size_t(body)];
     const BodyState& corr = (*preview_correction_)[size_t(c)];
     return {corr.rotation * base.rotation,
@@ -225,8 +226,7 @@ class HierarchicalSolver {
   // Where the preview shows the point `x` (relative to the body's rest centre) of a fine body:
   // two turns of a vector, where previewed() turns a matrix.
   Vec3 previewed_point(const std::vector<BodyState>& fine_state, int body, const Vec3& x) const {
-    const BodyState& base = size_t(body) < preview_anchor_.size() ? preview_anchor_[size_t(body)]
-                                                                  : fine_state[size_t(body)];
+    const BodyState& base = preview_base(fine_state, body);
     const int c = preview_cluster_[size_t(body)];
     const BodyState& corr = (*preview_correction_)[size_t(c)];
     return corr.rotation * (base.rotation * x + base.position - (*preview_center_)[size_t(c)]) +
@@ -248,6 +248,13 @@ class HierarchicalSolver {
   double cycle_only(std::vector<BodyState>& fine_state, double energy_before);  // no Newton step
   // Improves level l's corrections (restricted already) with the levels above it and sweeps.
   void solve_level(int l);
+  // Coarse Newton steps of one visit of `level` (1: the first coarse level, as a cycle visits it).
+  int coarse_steps_from(int level) const;
+  // The state a preview moves: a locked body's as the preview began, another's as it is.
+  const BodyState& preview_base(const std::vector<BodyState>& fine_state, int body) const {
+    return size_t(body) < preview_anchor_.size() ? preview_anchor_[size_t(body)]
+                                                 : fine_state[size_t(body)];
+  }
   // Applies the level's corrections to the bodies of the next finer level.
   void prolong_level(const Level& level, std::vector<BodyState>& finer_state) const;
 

@@ -341,6 +341,11 @@ void Deformer::predict(DragPredictor& predictor, const std::vector<double>& move
   predictor.remember(move, state_);
 }
 
+void Deformer::solved_for_current_targets() {
+  for (size_t h = 0; h < handles_.size(); ++h) solved_transforms_[h] = handles_[h].transform;
+  for (size_t f = 0; f < forces_.size(); ++f) solved_offsets_[f] = forces_[f].target_offset;
+}
+
 void Deformer::end_preview() {
   if (!previewing()) return;
   hierarchical_->end_preview(state_);
@@ -368,7 +373,7 @@ SolveReport Deformer::preview(const SolveOptions& options) {
       report.stop_reason = "not finite";
       return report;
     }
-    hierarchical_->begin_preview(state_);
+    hierarchical_->begin_preview(state_, -1, report.initial_energy);
   } else {
     report.initial_energy = preview_energy_;
   }
@@ -393,9 +398,7 @@ SolveReport Deformer::preview(const SolveOptions& options) {
   report.energy = e;
   report.energies.push_back(e);
   report.stop_reason = "preview";
-  // The picture is the one for the targets set now: no path to follow to them.
-  for (size_t h = 0; h < handles_.size(); ++h) solved_transforms_[h] = handles_[h].transform;
-  for (size_t f = 0; f < forces_.size(); ++f) solved_offsets_[f] = forces_[f].target_offset;
+  solved_for_current_targets();  // the picture is the one for the targets set now
   report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return report;
 }
@@ -507,8 +510,7 @@ SolveReport Deformer::solve_now(const SolveOptions& options) {
   solved_to_minimum_ = report.converged;
   settled_method_ = options.method;
   settled_tolerance_ = options.tolerance;
-  for (size_t h = 0; h < handles_.size(); ++h) solved_transforms_[h] = handles_[h].transform;
-  for (size_t f = 0; f < forces_.size(); ++f) solved_offsets_[f] = forces_[f].target_offset;
+  solved_for_current_targets();
   return finish(report);
 }
 
@@ -773,8 +775,7 @@ void Deformer::set_face_motions(const std::vector<RigidTransform>& motions) {
     }
   }
   // The state given is the one for the targets set now: no path to follow from rest.
-  for (size_t h = 0; h < handles_.size(); ++h) solved_transforms_[h] = handles_[h].transform;
-  for (size_t f = 0; f < forces_.size(); ++f) solved_offsets_[f] = forces_[f].target_offset;
+  solved_for_current_targets();
 }
 
 }  // namespace primo

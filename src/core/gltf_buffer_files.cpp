@@ -8,6 +8,7 @@
 
 #include "primo/error.h"
 #include "primo/input_files.h"
+#include "primo/json_limits.h"
 
 namespace fs = std::filesystem;
 
@@ -45,20 +46,24 @@ std::string_view gltf_json_text(std::string_view bytes) {
   return is_glb(bytes) ? glb_json(bytes) : bytes;
 }
 
-void check_gltf_buffer_files(std::string_view bytes, const std::string& path) {
+nlohmann::json gltf_outline(std::string_view bytes, const std::string& path) {
   const std::string_view text = gltf_json_text(bytes);
-  // Only the buffers are kept, and data URIs shortened: a .gltf may embed hundreds of MB.
+  check_json_depth(text, path);
   using Event = nlohmann::json::parse_event_t;
-  const nlohmann::json json = nlohmann::json::parse(
+  return nlohmann::json::parse(
       text,
       [](int depth, Event event, nlohmann::json& parsed) {
-        if (event == Event::key && depth == 1) return parsed == "buffers";
+        if (event == Event::key && depth == 1)
+          return parsed == "buffers" || parsed == "nodes" || parsed == "scenes";
         if (event == Event::value && parsed.is_string() &&
             parsed.get_ref<const std::string&>().rfind("data:", 0) == 0)
           parsed = "data:";
         return true;
       },
       false);
+}
+
+void check_gltf_buffer_files(const nlohmann::json& json, const std::string& path) {
   if (json.is_discarded() || !json.is_object()) return;
   const auto buffers = json.find("buffers");
   if (buffers == json.end()) return;

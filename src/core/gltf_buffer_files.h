@@ -4,16 +4,23 @@
 // there blocked the import forever, and a folder or a device gave a puzzling byte-count error.
 // So each is checked as an input first.
 
+#include <nlohmann/json.hpp>
 #include <string>
 #include <string_view>
 
 namespace primo::detail {
 
-// Throws Error "<path>: buffer K (<uri>): <file>: <problem>" for the first buffer whose file
-// is missing, not a regular file, or larger than an input may be. `bytes` are the .gltf's text
-// or at least the start of a .glb (its header and JSON chunk); files are looked up beside
-// `path`. What does not parse is left to Assimp, which names the problem.
-void check_gltf_buffer_files(std::string_view bytes, const std::string& path);
+// The parts of a glTF's JSON that the checks before Assimp read: its buffers (data URIs
+// shortened: a .gltf may embed hundreds of MB), nodes and scenes, parsed once for all of them.
+// `bytes` are the .gltf's text or at least the start of a .glb (its header and JSON chunk).
+// Throws Error naming `path` when the JSON nests deeper than kMaxJsonDepth (json_limits.h);
+// discarded when it does not parse, which is left to Assimp to name.
+nlohmann::json gltf_outline(std::string_view bytes, const std::string& path);
+
+// Throws Error "<path>: buffer K (<uri>): <file>: <problem>" for the first buffer of
+// `outline` (gltf_outline) whose file is missing, not a regular file, or larger than an input
+// may be; files are looked up beside `path`.
+void check_gltf_buffer_files(const nlohmann::json& outline, const std::string& path);
 
 // The JSON text of a .gltf (all of `bytes`) or of a .glb's JSON chunk (as much as `bytes` hold;
 // empty without one).

@@ -1,12 +1,9 @@
 #include "gltf_limits.h"
 
 #include <algorithm>
-#include <nlohmann/json.hpp>
 #include <vector>
 
-#include "gltf_buffer_files.h"
 #include "primo/error.h"
-#include "primo/json_limits.h"
 
 namespace primo::detail {
 namespace {
@@ -17,18 +14,7 @@ namespace {
 
 }  // namespace
 
-void check_gltf_node_tree(std::string_view bytes, const std::string& path) {
-  const std::string_view text = gltf_json_text(bytes);
-  check_json_depth(text, path);
-  // Only the nodes and scenes are kept (a .gltf may embed hundreds of MB of data URIs).
-  using Event = nlohmann::json::parse_event_t;
-  const nlohmann::json json = nlohmann::json::parse(
-      text,
-      [](int depth, Event event, nlohmann::json& parsed) {
-        if (event == Event::key && depth == 1) return parsed == "nodes" || parsed == "scenes";
-        return true;
-      },
-      false);
+void check_gltf_node_tree(const nlohmann::json& json, const std::string& path) {
   if (json.is_discarded() || !json.is_object()) return;
   const auto nodes_it = json.find("nodes");
   if (nodes_it == json.end() || !nodes_it->is_array()) return;

@@ -5,8 +5,8 @@
 // 20,000 nodes overflowed the stack, 40 nodes each listing the next twice asked for 2^40
 // instances, and a node that is its own descendant never ends.
 
+#include <nlohmann/json.hpp>
 #include <string>
-#include <string_view>
 
 namespace primo::detail {
 
@@ -15,11 +15,10 @@ constexpr int kMaxGltfNodeDepth = 1000;
 // Node instances the scene may expand to, at most (every path from a root to a node counts).
 constexpr double kMaxGltfNodeInstances = 1e6;
 
-// Throws Error "<path>: cannot read: <rule>" when the JSON of a .gltf, or of a .glb's JSON
-// chunk (`bytes` as read_gltf_json_part gives them), nests deeper than kMaxJsonDepth, when a
-// node lists a child that does not exist or is its own ancestor, or when the node tree is
-// deeper than kMaxGltfNodeDepth or expands to more than kMaxGltfNodeInstances instances.
-// JSON that does not parse is left to Assimp, which names the problem.
-void check_gltf_node_tree(std::string_view bytes, const std::string& path);
+// Throws Error "<path>: cannot read: <rule>" when a node of `outline` (gltf_outline, which
+// also limits the JSON's nesting) lists a child that does not exist, when the node tree has a
+// cycle, is deeper than kMaxGltfNodeDepth or expands to more than kMaxGltfNodeInstances
+// instances. JSON that did not parse is left to Assimp, which names the problem.
+void check_gltf_node_tree(const nlohmann::json& outline, const std::string& path);
 
 }  // namespace primo::detail

@@ -263,17 +263,14 @@ int HierarchicalSolver::drag_factor_lag() const {
   const double flops = coarse_solver_->factorization_flops();
   if (flops <= 0.0) return 0;
   // A preview's cycles stop at its level: they take as long as that level's bodies make them.
-  const int finest = previewing() ? bodies(preview_level_) : fine_.n_bodies();
-  int steps = options_.coarse_iterations;
-  for (int l = previewing() ? preview_level_ : 1; l < int(levels_.size()); ++l)
-    steps *= options_.intermediate_cycles;
-  return automatic_drag_factor_lag(flops, finest, previewing() ? steps : coarse_steps_per_cycle());
+  const int finest = previewing() ? preview_level_ : 0;
+  return automatic_drag_factor_lag(flops, bodies(finest), coarse_steps_from(std::max(finest, 1)));
 }
 
-int HierarchicalSolver::coarse_steps_per_cycle() const {
+int HierarchicalSolver::coarse_steps_from(int level) const {
   // The coarsest level is visited intermediate_cycles times per visit of the level above it.
   int steps = options_.coarse_iterations;
-  for (size_t l = 1; l < levels_.size(); ++l) steps *= options_.intermediate_cycles;
+  for (int l = level; l < int(levels_.size()); ++l) steps *= options_.intermediate_cycles;
   return steps;
 }
 
@@ -507,7 +504,8 @@ int HierarchicalSolver::automatic_preview_level() const {
   return levels() - 1 >= 1 ? levels() - 1 : -1;
 }
 
-void HierarchicalSolver::begin_preview(const std::vector<BodyState>& fine_state, int level) {
+void HierarchicalSolver::begin_preview(const std::vector<BodyState>& fine_state, int level,
+                                       double fine_energy) {
   if (levels_.empty()) throw Error("a preview needs a coarse level: the mesh is too small");
   if (level < 0) level = automatic_preview_level();
   level = std::clamp(level, 1, int(levels_.size()));
@@ -536,7 +534,8 @@ void HierarchicalSolver::begin_preview(const std::vector<BodyState>& fine_state,
   preview_correction_ = &top.correction;
   preview_center_ = &top.center;
   // The level leaves out the joints inside its clusters, which its motions do not change.
-  preview_energy_offset_ = fine_.energy(fine_state) - top.system.energy(top.correction);
+  if (std::isnan(fine_energy)) fine_energy = fine_.energy(fine_state);
+  preview_energy_offset_ = fine_energy - top.system.energy(top.correction);
   preview_level_ = level;
   restart_acceleration();
   timings_.restrict_prolong += seconds_since(t);

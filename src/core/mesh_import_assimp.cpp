@@ -470,6 +470,14 @@ std::string file_head(const std::string& path) {
   return head;
 }
 
+// What a glTF asks of Assimp (its node tree) and of the file system (its buffer files), from
+// one parse of its JSON.
+void check_gltf_before_assimp(std::string_view bytes, const std::string& path) {
+  const nlohmann::json outline = gltf_outline(bytes, path);
+  check_gltf_node_tree(outline, path);
+  check_gltf_buffer_files(outline, path);
+}
+
 // Assimp logs only through its DefaultLogger, which PriMo never creates: nothing is printed.
 // Its importers throw internally and return no scene; the catches are for what escapes them.
 template <typename Read>
@@ -504,11 +512,8 @@ SceneSoup read_scene_file(const std::string& path) {
   check_scene_signature(head, path);
   const std::string ext = lowercase_extension(path);
   if (ext == ".dae") check_collada_counts(read_input_file(path), path);
-  if (ext == ".gltf" || ext == ".glb") {
-    const std::string json_part = read_gltf_json_part(path, ext == ".glb");
-    check_gltf_node_tree(json_part, path);
-    check_gltf_buffer_files(json_part, path);
-  }
+  if (ext == ".gltf" || ext == ".glb")
+    check_gltf_before_assimp(read_gltf_json_part(path, ext == ".glb"), path);
   return read_with_assimp(path, [&](Assimp::Importer& importer, unsigned flags) {
     return importer.ReadFile(path, flags);
   });
@@ -519,10 +524,7 @@ SceneSoup read_scene_bytes(std::string_view bytes, const std::string& path) {
   check_scene_signature(bytes.substr(0, kSignatureBytes), path);
   const std::string ext = lowercase_extension(path);
   if (ext == ".dae") check_collada_counts(bytes, path);
-  if (ext == ".gltf" || ext == ".glb") {
-    check_gltf_node_tree(bytes, path);
-    check_gltf_buffer_files(bytes, path);
-  }
+  if (ext == ".gltf" || ext == ".glb") check_gltf_before_assimp(bytes, path);
   const std::string hint = ext.substr(1);
   return read_with_assimp(path, [&](Assimp::Importer& importer, unsigned flags) {
     return importer.ReadFileFromMemory(bytes.data(), bytes.size(), flags, hint.c_str());

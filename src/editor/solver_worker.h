@@ -96,6 +96,8 @@ struct SolverStatus {
   std::shared_ptr<const SolverGeometry> geometry;
 
   bool busy() const { return phase == SolverPhase::Building || phase == SolverPhase::Solving; }
+  // The published picture is a drag's preview (SolverGeometry::preview).
+  bool showing_preview() const { return geometry && geometry->preview; }
 };
 
 class SolverWorker {

@@ -509,7 +509,7 @@ void solver_section(Editor& e) {
     ImGui::TextDisabled("Last %s: %d frames, %.1f ms mean, %.1f ms max, mesh %.1f/s", d.what.c_str(),
                         d.frames, d.total_ms / d.frames, d.max_ms, d.updates_per_second());
   if (st.previews)
-    ImGui::TextDisabled(st.geometry && st.geometry->preview
+    ImGui::TextDisabled(st.showing_preview()
                             ? "Showing a preview (coarse levels); full resolution when the hand pauses"
                             : "Full resolution (drags show a preview: a full cycle outlasts 0.1 s)");
 }
@@ -571,7 +571,7 @@ void draw_status(Editor& e, UiState& ui) {
   // Where drags show previews, which picture is on screen: the preview follows the hand, the
   // full resolution catches up once it pauses.
   const char* picture = !st.previews                          ? ""
-                        : st.geometry && st.geometry->preview ? " | preview"
+                        : st.showing_preview() ? " | preview"
                                                               : " | full resolution";
   std::snprintf(right, sizeof right, "%s | %s%s | E %.4g | %s", tool_label(e.tools.tool),
                 phase_label(st.phase), picture, st.energy, frame);
@@ -600,7 +600,7 @@ void draw_progress(Editor& e, const ViewportRect& vp) {
     text = t;
   } else if (st.phase == SolverPhase::Solving && seconds > 0.4) {
     char t[160];
-    if (st.geometry && st.geometry->preview)
+    if (st.showing_preview())
       std::snprintf(t, sizeof t, "Preview: coarse levels, energy %.4g (full resolution when the hand pauses)",
                     st.energy);
     else
