@@ -44,6 +44,7 @@
 #include "gltf_buffer_files.h"
 #include "gltf_limits.h"
 #include "mesh_export_gltf.h"
+#include "scene_reader_process.h"
 #include "scene_signature.h"
 #include "primo/error.h"
 #include "primo/input_files.h"
@@ -481,25 +482,32 @@ void check_gltf_before_assimp(std::string_view bytes, const std::string& path) {
 // Assimp logs only through its DefaultLogger, which PriMo never creates: nothing is printed.
 // Its importers throw internally and return no scene; the catches are for what escapes them.
 template <typename Read>
-SceneSoup read_with_assimp(const std::string& path, Read read) {
+SceneSoup read_in_this_process(const std::string& path, Read read) {
   try {
     Assimp::Importer importer;
     keep_only_readers_of(importer, path);
     const aiScene* scene = read(importer, aiProcess_ValidateDataStructure);
     if (!scene) {
       const std::string message = assimp_message(importer.GetErrorString());
-      if (message.find("bad_alloc") != std::string::npos) fail(path, "cannot read: out of memory");
+      if (message.find("bad_alloc") != std::string::npos) throw std::bad_alloc();
       fail(path, "cannot read: not a valid " + format_name(path) + " file (Assimp: " + message + ")");
     }
     return SceneBaker(*scene, path).bake();
   } catch (const Error&) {
     throw;
   } catch (const std::bad_alloc&) {
-    fail(path, "cannot read: out of memory");
+    throw;  // read_in_child_process names the limit
   } catch (const std::exception& e) {
     fail(path, "cannot read: not a valid " + format_name(path) + " file (Assimp: " +
                    assimp_message(e.what()) + ")");
   }
+}
+
+// Assimp runs in a child process (scene_reader_process.h), with limits for `input_bytes`.
+template <typename Read>
+SceneSoup read_with_assimp(const std::string& path, size_t input_bytes, Read read) {
+  return read_in_child_process(path, format_name(path), reader_process_limits(input_bytes),
+                               [&] { return read_in_this_process(path, read); });
 }
 
 }  // namespace
@@ -514,7 +522,10 @@ SceneSoup read_scene_file(const std::string& path) {
   if (ext == ".dae") check_collada_counts(read_input_file(path), path);
   if (ext == ".gltf" || ext == ".glb")
     check_gltf_before_assimp(read_gltf_json_part(path, ext == ".glb"), path);
-  return read_with_assimp(path, [&](Assimp::Importer& importer, unsigned flags) {
+  std::error_code error;
+  const auto file_bytes = fs::file_size(path, error);
+  const size_t input_bytes = error ? 0 : size_t(file_bytes);
+  return read_with_assimp(path, input_bytes, [&](Assimp::Importer& importer, unsigned flags) {
     return importer.ReadFile(path, flags);
   });
 }
@@ -526,7 +537,7 @@ SceneSoup read_scene_bytes(std::string_view bytes, const std::string& path) {
   if (ext == ".dae") check_collada_counts(bytes, path);
   if (ext == ".gltf" || ext == ".glb") check_gltf_before_assimp(bytes, path);
   const std::string hint = ext.substr(1);
-  return read_with_assimp(path, [&](Assimp::Importer& importer, unsigned flags) {
+  return read_with_assimp(path, bytes.size(), [&](Assimp::Importer& importer, unsigned flags) {
     return importer.ReadFileFromMemory(bytes.data(), bytes.size(), flags, hint.c_str());
   });
 }

@@ -18,8 +18,9 @@ struct SceneSoup {
 };
 
 // Reads the file through Assimp, so that buffers and files it refers to (a .gltf's .bin) are
-// found beside it. Throws Error "<path>: ..." when Assimp rejects the file or the scene holds
-// no mesh.
+// found beside it; Assimp runs in a child process (scene_reader_process.h). Throws Error
+// "<path>: ..." when a check before Assimp or Assimp rejects the file, Assimp crashes or
+// outgrows its limits, or the scene holds no mesh.
 SceneSoup read_scene_file(const std::string& path);
 
 // The same from bytes in memory (for the fuzz targets): `path` picks the format by extension
