@@ -18,7 +18,7 @@ packages=(
   # (Google Benchmark: primo_microbench)
   libgtest-dev libbenchmark-dev xvfb xauth xdotool
   # the Python module and its tests
-  python3-dev pybind11-dev python3-numpy python3-pytest
+  python3-dev pybind11-dev python3-numpy python3-pytest python3-hypothesis
   # fuzzing (scripts/fuzz.sh): clang with libFuzzer and the sanitizer runtimes
   clang libclang-rt-14-dev
 )
