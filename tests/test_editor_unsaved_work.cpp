@@ -14,6 +14,7 @@
 #include "primo/mesh_generators.h"
 #include "primo/mesh_io.h"
 #include "primo/scenario.h"
+#include "primo/utf8.h"
 #include "recent_files.h"
 #include "test_support.h"
 
@@ -34,11 +35,12 @@ bool settle(Editor& e) {
 
 // A bar on disk, opened, with a fixed region and a moved handle: unsaved work.
 struct Posed {
+  explicit Posed(const std::string& name = "bar.obj") : mesh(dir + "/" + name) { pose(); }
   std::string dir = test::temp_dir();
-  std::string mesh = dir + "/bar.obj";
+  std::string mesh;
   std::string other = dir + "/other.obj";
   Editor e;
-  Posed() {
+  void pose() {
     save_mesh(make_bar(0.2, 1.0, 2, 10), mesh);
     save_mesh(make_bar(0.2, 1.0, 2, 12), other);
     e.set_autosave_interval(0.0);
@@ -148,6 +150,58 @@ TEST(EditorUnsavedWork, AutosaveKeepsTheWorkAndRecoveryBringsItBack) {
   EXPECT_TRUE(list_autosaved_work().empty());
 }
 
+TEST(EditorUnsavedWork, AMeshWhoseNameIsNotUtf8IsAutosavedThroughALinkAndRecovered) {
+  // A Linux file name is bytes, a JSON string text: the autosave named such a mesh and failed
+  // with a raw JSON error, so the work it was there to keep was not kept.
+  const std::string name = "caf\xE9-\xFF.obj";
+  std::vector<Vec3> shown;
+  std::string autosaved, mesh;
+  {
+    Posed p(name);
+    mesh = p.mesh;
+    shown = p.e.positions();
+    ASSERT_TRUE(p.e.autosave_now());
+    autosaved = autosave_path(p.mesh);
+    EXPECT_EQ(fs::path(autosaved).filename().string().rfind("caf%E9-%FF-", 0), 0u) << autosaved;
+    const Scenario s = load_scenario(autosaved);  // valid JSON, naming a link to the mesh
+    EXPECT_TRUE(is_valid_utf8(s.mesh));
+    EXPECT_TRUE(fs::is_symlink(s.mesh_path));
+    EXPECT_TRUE(fs::equivalent(s.mesh_path, p.mesh));
+    // Saving it as a scenario says why it cannot, in words, and keeps the work unsaved.
+    EXPECT_FALSE(p.e.save_scenario(p.dir + "/pose.json"));
+    ASSERT_FALSE(p.e.messages().empty());
+    EXPECT_NE(p.e.messages().back().text.find("caf%E9-%FF.obj\" is not UTF-8"), std::string::npos)
+        << p.e.messages().back().text;
+    EXPECT_TRUE(p.e.has_unsaved_changes());
+    // The recent files keep what JSON can hold.
+    EXPECT_TRUE(p.e.recent_files().entries().size() >= 1);
+  }
+  Editor next;
+  next.set_autosave_interval(0.0);
+  next.recover(autosaved);
+  ASSERT_TRUE(settle(next));
+  ASSERT_NE(next.document(), nullptr);
+  EXPECT_EQ(next.document()->mesh_path, fs::absolute(mesh).string()) << "the mesh, not the link";
+  double apart = 0.0;
+  for (size_t v = 0; v < shown.size(); ++v) apart = std::max(apart, (next.positions()[v] - shown[v]).norm());
+  EXPECT_LT(apart, 1e-9);
+  // Leaving the work removes the autosave and its link.
+  remove_autosave(autosaved);
+  EXPECT_FALSE(fs::exists(autosaved));
+  for (const auto& entry : fs::directory_iterator(fs::path(autosaved).parent_path()))
+    EXPECT_FALSE(entry.is_symlink()) << entry.path();
+}
+
+static bool a_name_not_utf8_stays_out_of_the_file(const std::string& list, const std::string& dir) {
+  {
+    RecentFiles r(list);
+    if (!r.add(dir + "/caf\xE9.obj") || r.entries().front() != dir + "/caf\xE9.obj") return false;
+  }
+  const RecentFiles again(list);
+  return again.entries().size() == RecentFiles::kMaxEntries - 1 &&
+         again.entries().front() == dir + "/m5.obj";
+}
+
 TEST(EditorUnsavedWork, RecentFilesAreNewestFirstUniqueAndBounded) {
   const std::string dir = test::temp_dir();
   const std::string list = dir + "/recent.json";
@@ -162,6 +216,8 @@ TEST(EditorUnsavedWork, RecentFilesAreNewestFirstUniqueAndBounded) {
   EXPECT_EQ(again.entries()[0], dir + "/m5.obj");
   EXPECT_EQ(again.entries()[1], dir + "/m11.obj");
   EXPECT_EQ(std::count(again.entries().begin(), again.entries().end(), dir + "/m5.obj"), 1);
+  // A name that is not UTF-8 stays out of the file (JSON holds text) and the rest is kept.
+  ASSERT_TRUE(a_name_not_utf8_stays_out_of_the_file(list, dir));
   // A broken list is an empty one, not an error.
   test::write_text(list, "{not json");
   EXPECT_TRUE(RecentFiles(list).entries().empty());

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "primo/error.h"
+#include "primo/utf8.h"
 #include "primo/input_files.h"
 #include "primo/json_limits.h"
 
@@ -655,6 +656,13 @@ Scenario load_scenario(const std::string& path) {
 std::string scenario_to_json(const Scenario& scenario) {
   Json root = Json::object();
   root["format"] = kFormat;
+  // A JSON string holds text: a file name of other bytes cannot be written as the format
+  // stands (a rename is the way out; the autosave refers to such a mesh through a link).
+  if (!is_valid_utf8(scenario.mesh))
+    throw Error("cannot write the scenario: the mesh's file name \"" +
+                escape_invalid_utf8(scenario.mesh) +
+                "\" is not UTF-8 (%XX marks each such byte), and a scenario's JSON holds only "
+                "text; rename the mesh file");
   root["mesh"] = scenario.mesh;
   const PrismParameters& prisms = scenario.prisms;
   const bool diagonal = prisms.height_unit == HeightUnit::Diagonal;
@@ -744,7 +752,13 @@ std::string scenario_to_json(const Scenario& scenario) {
     root["editor"] = std::move(editor);
   }
 
-  return root.dump(2) + "\n";
+  // Names typed in the editor are UTF-8; anything else is refused here, not half written.
+  try {
+    return root.dump(2) + "\n";
+  } catch (const Json::type_error& e) {
+    throw Error(std::string("cannot write the scenario: a name in it is not UTF-8 text (") +
+                e.what() + ")");
+  }
 }
 
 }  // namespace primo

@@ -5,7 +5,9 @@
 #include <filesystem>
 #include <functional>
 
+#include "primo/error.h"
 #include "primo/output_files.h"
+#include "primo/utf8.h"
 #include "user_folders.h"
 
 namespace primo::editor {
@@ -13,6 +15,15 @@ namespace fs = std::filesystem;
 namespace {
 
 std::string autosave_folder() { return state_folder() + "/autosave"; }
+
+// The link beside an autosave that stands for a mesh whose name is not text.
+constexpr const char* kMeshLinkInfix = ".mesh";
+
+std::string mesh_link_path(const std::string& autosave, const std::string& mesh_path) {
+  fs::path link(autosave);
+  link.replace_extension(kMeshLinkInfix + escape_invalid_utf8(fs::path(mesh_path).extension().string()));
+  return link.string();
+}
 
 }  // namespace
 
@@ -24,7 +35,32 @@ std::string autosave_path(const std::string& mesh_path) {
   const size_t hash = std::hash<std::string>{}(ec ? mesh_path : absolute);
   char suffix[20];
   std::snprintf(suffix, sizeof suffix, "%08zx", hash & 0xffffffffu);
-  return autosave_folder() + "/" + fs::path(mesh_path).stem().string() + "-" + suffix + ".json";
+  return autosave_folder() + "/" + escape_invalid_utf8(fs::path(mesh_path).stem().string()) + "-" +
+         suffix + ".json";
+}
+
+std::string autosave_mesh_reference(const std::string& autosave, const std::string& mesh_path) {
+  if (is_valid_utf8(mesh_path)) return mesh_path;
+  const std::string link = mesh_link_path(autosave, mesh_path);
+  std::error_code ec;
+  const fs::path target = fs::absolute(mesh_path, ec);
+  fs::create_directories(fs::path(autosave).parent_path(), ec);
+  fs::remove(link, ec);
+  fs::create_symlink(target, link, ec);
+  if (ec)
+    throw Error("cannot link to the mesh \"" + escape_invalid_utf8(mesh_path) + "\" from " + link +
+                ": " + ec.message());
+  return link;
+}
+
+std::string recovered_mesh_path(const std::string& mesh_path) {
+  std::error_code ec;
+  const fs::path path(mesh_path);
+  const bool ours = fs::path(path).remove_filename() == fs::path(autosave_folder() + "/") &&
+                    path.stem().extension() == kMeshLinkInfix;
+  if (!ours || !fs::is_symlink(path, ec)) return mesh_path;
+  const fs::path target = fs::read_symlink(path, ec);
+  return ec ? mesh_path : target.string();
 }
 
 std::vector<AutosavedWork> list_autosaved_work() {
@@ -62,6 +98,14 @@ void write_autosave(const std::string& path, const std::string& scenario_json) {
 void remove_autosave(const std::string& path) {
   std::error_code ec;
   fs::remove(path, ec);
+  // Its mesh link, whatever the mesh's extension.
+  const fs::path autosave(path);
+  for (const auto& entry : fs::directory_iterator(autosave.parent_path(), ec)) {
+    const fs::path other = entry.path();
+    if (other.stem().stem() == autosave.stem() && other.stem().extension() == kMeshLinkInfix &&
+        entry.is_symlink(ec))
+      fs::remove(other, ec);
+  }
 }
 
 }  // namespace primo::editor

@@ -10,8 +10,18 @@
 namespace primo::editor {
 
 // The autosave file of the document whose mesh is `mesh_path` (one per mesh, so two
-// documents of different meshes never overwrite each other's work).
+// documents of different meshes never overwrite each other's work). Its name is UTF-8 text
+// whatever the mesh's name is (other bytes become %XX).
 std::string autosave_path(const std::string& mesh_path);
+
+// The mesh path the autosaved scenario at `autosave` names: `mesh_path` itself when it is
+// UTF-8 text; otherwise a JSON string cannot hold it, and a symbolic link beside the autosave,
+// with a text name, points at the mesh (made or replaced here). Throws primo::Error.
+std::string autosave_mesh_reference(const std::string& autosave, const std::string& mesh_path);
+
+// The mesh a recovered scenario's `mesh_path` stands for: the target of such a link, else
+// `mesh_path`.
+std::string recovered_mesh_path(const std::string& mesh_path);
 
 struct AutosavedWork {
   std::string path;   // the autosaved scenario
@@ -23,6 +33,7 @@ std::vector<AutosavedWork> list_autosaved_work();
 
 // Writes the scenario text atomically, creating the folder. Throws primo::Error.
 void write_autosave(const std::string& path, const std::string& scenario_json);
-void remove_autosave(const std::string& path);  // quietly; a missing file is fine
+// Quietly, with its mesh link if any; a missing file is fine.
+void remove_autosave(const std::string& path);
 
 }  // namespace primo::editor

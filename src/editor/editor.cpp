@@ -10,6 +10,7 @@
 
 #include "primo/output_files.h"
 #include "primo/error.h"
+#include "autosave.h"
 #include "primo/mesh_io.h"
 #include "scenario_bridge.h"
 
@@ -87,6 +88,7 @@ void Editor::open_file(const std::string& path, bool recovered) {
         // Unsaved work with no file of its own: Save asks where, and it counts as changed.
         doc->scenario_path.clear();
         doc->saved_state = initial_edit_state(doc->n_faces());
+        doc->mesh_path = recovered_mesh_path(doc->mesh_path);  // not the autosave's link
       }
       // A mesh without a scenario settles to the user's tolerance.
       if (!recovered && doc->scenario_path.empty()) {
@@ -148,13 +150,13 @@ void Editor::save_mesh(const std::string& path) {
   });
 }
 
-std::string Editor::scenario_text(const std::string& path) const {
+std::string Editor::scenario_text(const std::string& path, const std::string& mesh) const {
   // The pose shown, when the solver has finished with the current state: reopening the
   // scenario or `primo deform` then starts there (docs/editor.md).
   const SolverGeometry* shown = geometry_.get();
   const bool solved = !status_.busy() && shown && shown->face_motions &&
                       int(shown->face_motions->size()) == doc_->n_faces();
-  const Scenario s = export_scenario(doc_->state, doc_->mesh_path, path, doc_->solver,
+  const Scenario s = export_scenario(doc_->state, mesh, path, doc_->solver,
                                      solved ? shown->face_motions.get() : nullptr);
   return scenario_to_json(s);
 }
@@ -165,7 +167,7 @@ bool Editor::save_scenario(const std::string& path) {
     return false;
   }
   try {
-    write_text_atomically(path, scenario_text(path));
+    write_text_atomically(path, scenario_text(path, doc_->mesh_path));
   } catch (const std::exception& e) {
     error(e.what());
     return false;

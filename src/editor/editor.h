@@ -303,7 +303,8 @@ class Editor {
 
   // Unsaved work.
   void open_file(const std::string& path, bool recovered);
-  std::string scenario_text(const std::string& path) const;  // the document as saved there
+  // The document as saved at `path`, its mesh named `mesh` (the document's, or a link to it).
+  std::string scenario_text(const std::string& path, const std::string& mesh) const;
   void forget_autosave();
   std::optional<DiscardQuestion> discard_question_;
   double autosave_every_ = 120.0, last_autosave_ = 0.0;

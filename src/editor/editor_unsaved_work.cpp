@@ -49,7 +49,7 @@ bool Editor::autosave_now() {
   if (!doc_) return false;
   const std::string path = autosave_path(doc_->mesh_path);
   try {
-    write_autosave(path, scenario_text(path));
+    write_autosave(path, scenario_text(path, autosave_mesh_reference(path, doc_->mesh_path)));
   } catch (const std::exception& e) {
     error("Autosave failed: " + std::string(e.what()));
     return false;

@@ -7,6 +7,7 @@
 #include "primo/error.h"
 #include "primo/input_files.h"
 #include "primo/output_files.h"
+#include "primo/utf8.h"
 #include "user_folders.h"
 
 namespace primo::editor {
@@ -47,7 +48,12 @@ bool RecentFiles::write() const {
   try {
     std::error_code ec;
     fs::create_directories(fs::path(path_).parent_path(), ec);
-    write_text_atomically(path_, nlohmann::json{{"files", entries_}}.dump(2) + "\n");
+    // A file name that is not UTF-8 cannot be a JSON string: it stays in the menu for this
+    // run, not in the file.
+    std::vector<std::string> text;
+    for (const std::string& entry : entries_)
+      if (is_valid_utf8(entry)) text.push_back(entry);
+    write_text_atomically(path_, nlohmann::json{{"files", text}}.dump(2) + "\n");
     return true;
   } catch (const std::exception&) {
     return false;

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "primo/error.h"
+#include "primo/utf8.h"
 #include "primo/input_files.h"
 #include "primo/json_limits.h"
 #include "primo/output_files.h"
@@ -498,16 +499,26 @@ std::string session_to_json(const Session& s, const std::string& session_path) {
   const json solver = {{"max_iterations", s.solver.max_iterations},
                        {"tolerance", s.solver.tolerance},
                        {"method", method}};
+  // A JSON string holds text: a file name of other bytes cannot be written.
+  if (!is_valid_utf8(mesh))
+    throw Error("cannot write the session: the mesh's file name \"" + escape_invalid_utf8(mesh) +
+                "\" is not UTF-8 (%XX marks each such byte), and a session's JSON holds only "
+                "text; rename the mesh file");
   // One event per line: diffable, and a truncated file still shows where it ends.
-  std::string out = "{\n  \"format\": \"" + std::string(kSessionFormat) + "\",\n";
-  out += "  \"mesh\": " + json(mesh).dump() + ",\n";
-  out += "  \"solver\": " + solver.dump() + ",\n";
-  out += "  \"initial\": " + initial.dump() + ",\n";
-  out += "  \"events\": [";
-  for (size_t i = 0; i < s.events.size(); ++i)
-    out += (i ? ",\n    " : "\n    ") + event_json(s.events[i]).dump();
-  out += s.events.empty() ? "]\n}\n" : "\n  ]\n}\n";
-  return out;
+  try {
+    std::string out = "{\n  \"format\": \"" + std::string(kSessionFormat) + "\",\n";
+    out += "  \"mesh\": " + json(mesh).dump() + ",\n";
+    out += "  \"solver\": " + solver.dump() + ",\n";
+    out += "  \"initial\": " + initial.dump() + ",\n";
+    out += "  \"events\": [";
+    for (size_t i = 0; i < s.events.size(); ++i)
+      out += (i ? ",\n    " : "\n    ") + event_json(s.events[i]).dump();
+    out += s.events.empty() ? "]\n}\n" : "\n  ]\n}\n";
+    return out;
+  } catch (const json::type_error& e) {
+    throw Error(std::string("cannot write the session: a name in it is not UTF-8 text (") +
+                e.what() + ")");
+  }
 }
 
 void save_session(const Session& session, const std::string& path) {
