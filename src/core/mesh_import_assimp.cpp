@@ -41,6 +41,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "fbx_checks.h"
 #include "gltf_buffer_files.h"
 #include "gltf_limits.h"
 #include "mesh_export_gltf.h"
@@ -503,16 +504,19 @@ SceneSoup read_in_this_process(const std::string& path, Read read) {
   }
 }
 
-// Assimp runs in a child process (scene_reader_process.h), with limits for `input_bytes`.
+// Assimp runs in a child process (scene_reader_process.h), with `limits` or those for
+// `input_bytes`.
 template <typename Read>
-SceneSoup read_with_assimp(const std::string& path, size_t input_bytes, Read read) {
-  return read_in_child_process(path, format_name(path), reader_process_limits(input_bytes),
+SceneSoup read_with_assimp(const std::string& path, size_t input_bytes,
+                           const ReaderProcessLimits* limits, Read read) {
+  return read_in_child_process(path, format_name(path),
+                               limits ? *limits : reader_process_limits(input_bytes),
                                [&] { return read_in_this_process(path, read); });
 }
 
 }  // namespace
 
-SceneSoup read_scene_file(const std::string& path) {
+SceneSoup read_scene_file(const std::string& path, const ReaderProcessLimits* limits) {
   // Assimp opens the file itself (a .gltf also its buffers): it must not meet a pipe or a device.
   check_input_file(path);
   const std::string head = file_head(path);
@@ -522,22 +526,25 @@ SceneSoup read_scene_file(const std::string& path) {
   if (ext == ".dae") check_collada_counts(read_input_file(path), path);
   if (ext == ".gltf" || ext == ".glb")
     check_gltf_before_assimp(read_gltf_json_part(path, ext == ".glb"), path);
+  if (ext == ".fbx") check_fbx_before_assimp(read_input_file(path), path);
   std::error_code error;
   const auto file_bytes = fs::file_size(path, error);
   const size_t input_bytes = error ? 0 : size_t(file_bytes);
-  return read_with_assimp(path, input_bytes, [&](Assimp::Importer& importer, unsigned flags) {
+  return read_with_assimp(path, input_bytes, limits, [&](Assimp::Importer& importer, unsigned flags) {
     return importer.ReadFile(path, flags);
   });
 }
 
-SceneSoup read_scene_bytes(std::string_view bytes, const std::string& path) {
+SceneSoup read_scene_bytes(std::string_view bytes, const std::string& path,
+                           const ReaderProcessLimits* limits) {
   if (bytes.empty()) fail(path, "cannot read: the file is empty");
   check_scene_signature(bytes.substr(0, kSignatureBytes), path);
   const std::string ext = lowercase_extension(path);
   if (ext == ".dae") check_collada_counts(bytes, path);
   if (ext == ".gltf" || ext == ".glb") check_gltf_before_assimp(bytes, path);
+  if (ext == ".fbx") check_fbx_before_assimp(bytes, path);
   const std::string hint = ext.substr(1);
-  return read_with_assimp(path, bytes.size(), [&](Assimp::Importer& importer, unsigned flags) {
+  return read_with_assimp(path, bytes.size(), limits, [&](Assimp::Importer& importer, unsigned flags) {
     return importer.ReadFileFromMemory(bytes.data(), bytes.size(), flags, hint.c_str());
   });
 }

@@ -10,6 +10,8 @@
 
 namespace primo::detail {
 
+struct ReaderProcessLimits;  // scene_reader_process.h
+
 // A scene baked into one soup, with what was merged and left out.
 struct SceneSoup {
   PolygonSoup soup;
@@ -21,11 +23,13 @@ struct SceneSoup {
 // found beside it; Assimp runs in a child process (scene_reader_process.h). Throws Error
 // "<path>: ..." when a check before Assimp or Assimp rejects the file, Assimp crashes or
 // outgrows its limits, or the scene holds no mesh.
-SceneSoup read_scene_file(const std::string& path);
+// `limits` replaces reader_process_limits' for the file's size (the fuzz targets' shorter time).
+SceneSoup read_scene_file(const std::string& path, const ReaderProcessLimits* limits = nullptr);
 
 // The same from bytes in memory (for the fuzz targets): `path` picks the format by extension
 // and names the file in errors; files the bytes refer to are not read.
-SceneSoup read_scene_bytes(std::string_view bytes, const std::string& path);
+SceneSoup read_scene_bytes(std::string_view bytes, const std::string& path,
+                           const ReaderProcessLimits* limits = nullptr);
 
 // mesh_from_soup, and when several meshes were joined, the error says which faces came from
 // which.
