@@ -16,7 +16,8 @@ shift || true
 build=${PRIMO_FUZZ_BUILD_DIR:-"$root/build-fuzz"}
 targets=("$@")
 if ((${#targets[@]} == 0)); then
-  targets=(fuzz_obj fuzz_off fuzz_ply fuzz_stl fuzz_om fuzz_scenario fuzz_session fuzz_script fuzz_deformer)
+  targets=(fuzz_obj fuzz_off fuzz_ply fuzz_stl fuzz_om fuzz_gltf fuzz_glb fuzz_fbx fuzz_dae fuzz_3mf
+           fuzz_scenario fuzz_session fuzz_script fuzz_deformer)
 fi
 
 "$root/scripts/setup.sh" >/dev/null
@@ -41,6 +42,7 @@ extra_seeds() {
   case "$1" in
     obj) echo "$root/assets/meshes/spot_control_mesh.obj $root/../shared/spec/examples/cylinder-small.obj" ;;
     off) echo "$root/../shared/spec/examples/hexsphere.off" ;;
+    fbx) echo "$root/assets/meshes/huesitos.fbx" ;;
     scenario) echo "$root/assets/scenarios/bar-bend.json $root/assets/scenarios/spot-pose.json $root/assets/scenarios/cylinder-bend-twist.json $root/../shared/spec/examples/cylinder-small-bend-45.json $root/../shared/spec/examples/hexsphere-orientation.json" ;;
     session) echo "$root/assets/sessions/spot-pose.session.json" ;;
     script) echo "$root/assets/sessions/spot-pose.script.txt" ;;
@@ -57,12 +59,15 @@ for target in "${targets[@]}"; do
   [[ $name == deformer ]] && cp "$root/fuzz/seeds/scenario"/* "$seeds/" 2>/dev/null || true
   for f in $(extra_seeds "$name"); do [[ -f $f ]] && cp "$f" "$seeds/"; done
   case "$name" in
-    obj | off | ply | stl | om) dict="$root/fuzz/dict/$name.dict" ;;
+    obj | off | ply | stl | om | gltf | fbx | dae | 3mf) dict="$root/fuzz/dict/$name.dict" ;;
+    glb) dict="$root/fuzz/dict/gltf.dict" ;;
     scenario | session | deformer) dict="$root/fuzz/dict/json.dict" ;;
     script) dict="$root/fuzz/dict/script.dict" ;;
   esac
   log="$build/findings/$target.log"
-  options=(-timeout=10 -rss_limit_mb=2560 -malloc_limit_mb=1024 -max_len=16384
+  # Scene files are larger (the FBX seeds are 17 and 112 kB).
+  case "$name" in gltf | glb | fbx | dae | 3mf) max_len=131072 ;; *) max_len=16384 ;; esac
+  options=(-timeout=10 -rss_limit_mb=2560 -malloc_limit_mb=1024 -max_len=$max_len
            -dict="$dict" -artifact_prefix="$build/findings/$target-" -print_final_stats=1)
   result=ok
   # The inputs earlier fuzzing found (fuzz/regressions/<name>), each run once.
