@@ -121,36 +121,16 @@ TEST(ReaderProcess, LimitsGrowWithTheInputWithinTheMachinesMemory) {
 }
 
 TEST(ReaderProcess, AssimpCrashingOnAFileIsAnError) {
-  // Assimp's FBX reader follows parent links without a cycle check and crashes on a model that
-  // is its own parent. PriMo's FBX check refuses such a file before Assimp sees it
-  // (FbxChecks); here Assimp reads it unchecked, in the child, as it would any defect no
-  // check foresaw, and the editor that read it in its own process would have gone down.
-  const std::string dir = test::temp_dir();
-  const std::string looped = dir + "/own-parent.fbx";
-  test::write_text(looped, R"(; FBX 7.4.0 project file
-FBXHeaderExtension:  {
-	FBXHeaderVersion: 1003
-	FBXVersion: 7400
-}
-Objects:  {
-	Geometry: 1000, "Geometry::tri", "Mesh" {
-		Vertices: *9 {
-			a: 0,0,0,1,0,0,0,1,0
-		}
-		PolygonVertexIndex: *3 {
-			a: 0,1,-3
-		}
-	}
-	Model: 2000, "Model::tri", "Mesh" {
-		Version: 232
-	}
-}
-Connections:  {
-	C: "OO",1000,2000
-	C: "OO",2000,0
-	C: "OO",2000,2000
-}
-)");
+  // Assimp's COLLADA reader follows instance_node links without a cycle check and crashes on
+  // a node that instances itself. PriMo's COLLADA check refuses such a file before Assimp sees
+  // it; here Assimp reads it unchecked, in the child, as it would any defect no check
+  // foresaw, and the editor that read it in its own process would have gone down.
+  std::string text = test::read_text(test::source_path("tests/data/scenes/cube_emptyTags.dae"));
+  const std::string geometry = "<instance_geometry url=\"#box-lib\">";
+  ASSERT_NE(text.find(geometry), std::string::npos);
+  text.replace(text.find(geometry), 0, "<instance_node url=\"#Box\"/>");
+  const std::string looped = test::temp_dir() + "/own-instance.dae";
+  test::write_text(looped, text);
   const std::string what = child_error([&]() -> SceneSoup {
     Assimp::Importer importer;
     importer.ReadFile(looped, 0);
