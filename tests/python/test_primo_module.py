@@ -65,6 +65,23 @@ def test_bad_input_raises_primo_errors_with_the_cores_messages(tmp_path):
         d.set_handle_transform(0, matrix=np.diag([2.0, 1.0, 1.0, 1.0]))
 
 
+def test_hostile_scene_files_raise_instead_of_crashing_python(tmp_path):
+    # Assimp reads scene files in a child process: what crashed it (a COLLADA node that
+    # instances itself, an FBX model that is its own parent) is a primo.Error here.
+    cube = open(os.path.join(SOURCE, "tests", "data", "scenes", "cube_emptyTags.dae")).read()
+    looped = tmp_path / "own-instance.dae"
+    looped.write_text(cube.replace('<instance_geometry url="#box-lib">',
+                                   '<instance_node url="#Box"/><instance_geometry url="#box-lib">', 1))
+    with pytest.raises(primo.Error, match="own-instance.dae: cannot read"):
+        primo.load_mesh(str(looped))
+    fbx = tmp_path / "own-parent.fbx"
+    fbx.write_text('; FBX 7.4.0 project file\nObjects:  {\n\tModel: 2000, "Model::m", "Mesh" {\n\t}\n}\n'
+                   'Connections:  {\n\tC: "OO",2000,0\n\tC: "OO",2000,2000\n}\n')
+    with pytest.raises(primo.Error, match="own-parent.fbx: cannot read"):
+        primo.load_mesh(str(fbx))
+    assert primo.load_mesh(os.path.join(SOURCE, "tests", "data", "scenes", "box.3mf")).n_faces == 12
+
+
 def test_a_bent_tube_follows_its_handles_and_drags_back_to_rest():
     V, F = tube()
     mesh = primo.Mesh(V, F)
