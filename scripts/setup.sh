@@ -8,8 +8,9 @@ packages=(
   build-essential cmake ninja-build pkg-config ccache
   # core library
   libopenmesh-dev libeigen3-dev libsuitesparse-dev libopenblas0-pthread libtbb-dev
-  # command line and file formats (Assimp reads glTF, FBX, COLLADA and 3MF)
-  nlohmann-json3-dev libcli11-dev libassimp-dev
+  # command line and file formats (Assimp reads glTF, FBX, COLLADA and 3MF; the checks before
+  # it read COLLADA's and 3MF's XML with libxml2 and 3MF's zip with minizip)
+  nlohmann-json3-dev libcli11-dev libassimp-dev libxml2-dev libminizip-dev
   # quality measurement: exact self-intersections and the ARAP peers (primo_quality only)
   libcgal-dev
   # editor

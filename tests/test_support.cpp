@@ -16,7 +16,11 @@
 #include <stdexcept>
 #include <vector>
 
+#include <gtest/gtest.h>
+
+#include "../src/core/mesh_import_assimp.h"
 #include "primo/error.h"
+#include "primo/mesh_io.h"
 
 namespace fs = std::filesystem;
 
@@ -127,6 +131,28 @@ std::string error_of(const std::function<void()>& action) {
     return e.what();
   }
   return "(no error)";
+}
+
+void expect_one_line_error(const std::function<void()>& load, const std::string& path,
+                           const std::string& needle) {
+  try {
+    load();
+    ADD_FAILURE() << path << ": no error";
+  } catch (const Error& e) {
+    const std::string message = e.what();
+    EXPECT_EQ(message.rfind(path + ": ", 0), 0u) << message;
+    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+    EXPECT_NE(message.find(needle), std::string::npos) << message;
+  }
+}
+
+void expect_refused_from_file_and_bytes(const std::string& path, const std::string& bytes,
+                                        const std::string& needle) {
+  write_text(path, bytes);
+  expect_one_line_error([&] { load_mesh(path); }, path, needle);
+  expect_one_line_error(
+      [&] { detail::mesh_from_scene_soup(detail::read_scene_bytes(bytes, path), path); }, path,
+      needle);
 }
 
 CommandResult run_primo_within(int seconds, const std::string& arguments) {

@@ -49,6 +49,15 @@ CommandResult run_primo_within(int seconds, const std::string& arguments);
 // The message of the primo::Error that `action` throws, or "(no error)".
 std::string error_of(const std::function<void()>& action);
 
+// Expects (as a GoogleTest failure otherwise) that `load` throws a primo::Error whose message is
+// one line starting with "<path>: " and containing `needle`.
+void expect_one_line_error(const std::function<void()>& load, const std::string& path,
+                           const std::string& needle);
+// `bytes` written to `path` and read as a scene file from the file (load_mesh) and from memory
+// (detail::read_scene_bytes): both one line naming the file and saying `needle`.
+void expect_refused_from_file_and_bytes(const std::string& path, const std::string& bytes,
+                                        const std::string& needle);
+
 }  // namespace primo::test
 
 #include <functional>

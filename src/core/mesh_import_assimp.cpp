@@ -41,12 +41,14 @@
 #include <unordered_map>
 #include <vector>
 
+#include "collada_checks.h"
 #include "fbx_checks.h"
 #include "gltf_buffer_files.h"
 #include "gltf_limits.h"
 #include "mesh_export_gltf.h"
 #include "scene_reader_process.h"
 #include "scene_signature.h"
+#include "threemf_checks.h"
 #include "primo/error.h"
 #include "primo/input_files.h"
 #include "primo/mesh_import.h"
@@ -426,26 +428,6 @@ class SceneBaker {
   std::vector<std::pair<std::string, size_t>> skins_;
 };
 
-// Assimp's COLLADA reader reserves memory for the count="N" an array or accessor declares before
-// it reads the values: a damaged count makes it allocate gigabytes for tens of seconds before it
-// fails. A count can never exceed the file's size in bytes (every value takes at least one), so
-// larger ones are refused first.
-void check_collada_counts(std::string_view bytes, const std::string& path) {
-  const std::string_view key = "count=\"";
-  for (size_t at = bytes.find(key); at != std::string_view::npos; at = bytes.find(key, at + 1)) {
-    size_t i = at + key.size();
-    unsigned long long count = 0;
-    while (i < bytes.size() && std::isdigit(static_cast<unsigned char>(bytes[i])) &&
-           count <= bytes.size())
-      count = count * 10 + unsigned(bytes[i++] - '0');
-    if (count > bytes.size())
-      fail(path, "cannot read: not a valid COLLADA file (a count of " +
-                     (count > bytes.size() * 10 ? std::string("more than ") + std::to_string(bytes.size())
-                                                : std::to_string(count)) +
-                     " values is larger than the file)");
-  }
-}
-
 // Leaves `importer` only the readers of the format `path`'s extension names (glTF has two,
 // for its versions 1 and 2): bytes they decline are refused, not passed on to whichever of
 // Assimp's other readers claims them (scene_signature.h).
@@ -523,7 +505,8 @@ SceneSoup read_scene_file(const std::string& path, const ReaderProcessLimits* li
   if (head.empty()) fail(path, "cannot read: the file is empty");
   check_scene_signature(head, path);
   const std::string ext = lowercase_extension(path);
-  if (ext == ".dae") check_collada_counts(read_input_file(path), path);
+  if (ext == ".dae") check_collada(read_input_file(path), path);
+  if (ext == ".3mf") check_3mf(read_input_file(path), path);
   if (ext == ".gltf" || ext == ".glb")
     check_gltf_before_assimp(read_gltf_json_part(path, ext == ".glb"), path);
   if (ext == ".fbx") check_fbx_before_assimp(read_input_file(path), path);
@@ -540,7 +523,8 @@ SceneSoup read_scene_bytes(std::string_view bytes, const std::string& path,
   if (bytes.empty()) fail(path, "cannot read: the file is empty");
   check_scene_signature(bytes.substr(0, kSignatureBytes), path);
   const std::string ext = lowercase_extension(path);
-  if (ext == ".dae") check_collada_counts(bytes, path);
+  if (ext == ".dae") check_collada(bytes, path);
+  if (ext == ".3mf") check_3mf(bytes, path);
   if (ext == ".gltf" || ext == ".glb") check_gltf_before_assimp(bytes, path);
   if (ext == ".fbx") check_fbx_before_assimp(bytes, path);
   const std::string hint = ext.substr(1);
