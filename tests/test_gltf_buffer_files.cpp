@@ -117,6 +117,5 @@ TEST(GltfBufferFiles, EmbeddedBuffersAndUnparsableJsonAreLeftAlone) {
   const std::string glb = glb_with_json(json.dump());
   std::string lying = glb;
   lying.replace(12, 4, u32(0x7fffffff));
-  write_text(dir + "/lying.glb", lying);
-  EXPECT_LE(detail::read_gltf_json_part(dir + "/lying.glb", true).size(), lying.size());
+  EXPECT_LE(detail::gltf_json_text(lying).size(), lying.size());
 }

@@ -383,7 +383,7 @@ TEST(SceneImport, BadFilesGiveOneLineNamingTheFile) {
     std::string name, bytes, needle;
   };
   const std::vector<Bad> bad = {
-      {"truncated.glb", glb.substr(0, glb.size() / 2), "not a valid glTF file"},
+      {"truncated.glb", glb.substr(0, glb.size() / 2), "not a glTF file PriMo accepts (buffer 0 declares"},
       {"truncated.fbx", fbx.substr(0, fbx.size() / 2), "not an FBX file PriMo accepts (the record at byte"},
       {"garbage.glb", std::string(300, '\x7f'), "not a GLB (binary glTF) file"},
       {"garbage.gltf", "{ this is not json", "not a valid glTF file"},
@@ -474,7 +474,7 @@ TEST(SceneImport, AGltfNodeTreeIsCheckedBeforeAssimpWalksIt) {
       {"bomb.gltf", cube_gltf(chain(40, 2), "[0]"), "expands to more than 1000000 node instances"},
       {"cycle.gltf", cube_gltf(R"([{"children": [1]}, {"children": [0], "mesh": 0}])", "[0]"),
        "its node tree has a cycle"},
-      {"self.gltf", cube_gltf(R"([{"children": [0], "mesh": 0}])", "[0]"), "its node tree has a cycle"},
+      {"self.gltf", cube_gltf(R"([{"children": [0], "mesh": 0}])", "[0]"), "node 0 is its own parent"},
       {"missing-child.gltf", cube_gltf(R"([{"children": [5], "mesh": 0}])", "[0]"),
        "node 0 lists a child 5 that does not exist"},
   };

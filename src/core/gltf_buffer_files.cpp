@@ -50,12 +50,17 @@ nlohmann::json gltf_outline(std::string_view bytes, const std::string& path) {
   const std::string_view text = gltf_json_text(bytes);
   check_json_depth(text, path);
   using Event = nlohmann::json::parse_event_t;
+  std::string section;  // the top-level key being parsed
   return nlohmann::json::parse(
       text,
-      [](int depth, Event event, nlohmann::json& parsed) {
-        if (event == Event::key && depth == 1)
-          return parsed == "buffers" || parsed == "nodes" || parsed == "scenes";
-        if (event == Event::value && parsed.is_string() &&
+      [&section](int depth, Event event, nlohmann::json& parsed) {
+        if (event == Event::key && depth == 1) {
+          section = parsed.get<std::string>();
+          return section == "buffers" || section == "bufferViews" || section == "accessors" ||
+                 section == "meshes" || section == "nodes" || section == "scenes";
+        }
+        // A buffer's data URI is kept for the accessor checks; images' are not.
+        if (event == Event::value && section != "buffers" && parsed.is_string() &&
             parsed.get_ref<const std::string&>().rfind("data:", 0) == 0)
           parsed = "data:";
         return true;
@@ -88,25 +93,6 @@ void check_gltf_buffer_files(const nlohmann::json& json, const std::string& path
     for (size_t k = 0; k < buffers->size(); ++k) check(std::to_string(k), (*buffers)[k]);
   else if (buffers->is_object())
     for (const auto& [id, buffer] : buffers->items()) check("'" + id + "'", buffer);
-}
-
-std::string read_gltf_json_part(const std::string& path, bool binary) {
-  if (!binary) return read_input_file(path);
-  check_input_file(path);
-  std::ifstream in(path, std::ios::binary);
-  std::string head(kGlbHeaderBytes + kGlbChunkHeaderBytes, '\0');
-  in.read(head.data(), std::streamsize(head.size()));
-  head.resize(size_t(in.gcount()));
-  if (!is_glb(head) || !has_json_chunk(head)) return head;  // Assimp will say what is wrong
-  // No more than the file holds, whatever its header says.
-  std::error_code ec;
-  const std::uintmax_t size = fs::file_size(path, ec);
-  const std::uintmax_t json_bytes = std::min<std::uintmax_t>(
-      little_endian_u32(head, kGlbHeaderBytes), !ec && size > head.size() ? size - head.size() : 0);
-  std::string json(size_t(json_bytes), '\0');
-  in.read(json.data(), std::streamsize(json.size()));
-  json.resize(size_t(in.gcount()));
-  return head + json;
 }
 
 }  // namespace primo::detail

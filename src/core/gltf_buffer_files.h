@@ -10,8 +10,9 @@
 
 namespace primo::detail {
 
-// The parts of a glTF's JSON that the checks before Assimp read: its buffers (data URIs
-// shortened: a .gltf may embed hundreds of MB), nodes and scenes, parsed once for all of them.
+// The parts of a glTF's JSON that the checks before Assimp read: its buffers (with their data
+// URIs), buffer views, accessors, meshes, nodes and scenes (other data URIs, such as embedded
+// images, shortened), parsed once for all of them.
 // `bytes` are the .gltf's text or at least the start of a .glb (its header and JSON chunk).
 // Throws Error naming `path` when the JSON nests deeper than kMaxJsonDepth (json_limits.h);
 // discarded when it does not parse, which is left to Assimp to name.
@@ -25,9 +26,5 @@ void check_gltf_buffer_files(const nlohmann::json& outline, const std::string& p
 // The JSON text of a .gltf (all of `bytes`) or of a .glb's JSON chunk (as much as `bytes` hold;
 // empty without one).
 std::string_view gltf_json_text(std::string_view bytes);
-
-// The part of the file at `path` that check_gltf_buffer_files needs: the whole of a .gltf,
-// the header and JSON chunk of a .glb (`binary`; not its binary chunk, which may be large).
-std::string read_gltf_json_part(const std::string& path, bool binary);
 
 }  // namespace primo::detail

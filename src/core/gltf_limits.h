@@ -10,15 +10,10 @@
 
 namespace primo::detail {
 
-// Nodes below the root at most (real assets nest a few dozen levels).
-constexpr int kMaxGltfNodeDepth = 1000;
-// Node instances the scene may expand to, at most (every path from a root to a node counts).
-constexpr double kMaxGltfNodeInstances = 1e6;
-
 // Throws Error "<path>: cannot read: <rule>" when a node of `outline` (gltf_outline, which
 // also limits the JSON's nesting) lists a child that does not exist, when the node tree has a
-// cycle, is deeper than kMaxGltfNodeDepth or expands to more than kMaxGltfNodeInstances
-// instances. JSON that did not parse is left to Assimp, which names the problem.
+// cycle, is deeper than kMaxSceneNodeDepth or expands to more than kMaxSceneNodeInstances
+// instances (node_graph_limits.h). JSON that did not parse is left to Assimp, which names the problem.
 void check_gltf_node_tree(const nlohmann::json& outline, const std::string& path);
 
 }  // namespace primo::detail

@@ -43,6 +43,7 @@
 
 #include "collada_checks.h"
 #include "fbx_checks.h"
+#include "gltf_accessor_checks.h"
 #include "gltf_buffer_files.h"
 #include "gltf_limits.h"
 #include "mesh_export_gltf.h"
@@ -456,10 +457,14 @@ std::string file_head(const std::string& path) {
 
 // What a glTF asks of Assimp (its node tree) and of the file system (its buffer files), from
 // one parse of its JSON.
-void check_gltf_before_assimp(std::string_view bytes, const std::string& path) {
+// `bytes` are the whole asset; its buffer files are read from its folder when `files_beside`.
+void check_gltf_before_assimp(std::string_view bytes, const std::string& path, bool files_beside) {
   const nlohmann::json outline = gltf_outline(bytes, path);
   check_gltf_node_tree(outline, path);
   check_gltf_buffer_files(outline, path);
+  const auto folder = files_beside ? std::optional<std::string>(fs::path(path).parent_path().string())
+                                   : std::nullopt;
+  check_gltf_accessors(outline, gltf_buffer_bytes(outline, bytes, folder), path);
 }
 
 // Assimp logs only through its DefaultLogger, which PriMo never creates: nothing is printed.
@@ -508,7 +513,7 @@ SceneSoup read_scene_file(const std::string& path, const ReaderProcessLimits* li
   if (ext == ".dae") check_collada(read_input_file(path), path);
   if (ext == ".3mf") check_3mf(read_input_file(path), path);
   if (ext == ".gltf" || ext == ".glb")
-    check_gltf_before_assimp(read_gltf_json_part(path, ext == ".glb"), path);
+    check_gltf_before_assimp(read_input_file(path), path, true);
   if (ext == ".fbx") check_fbx_before_assimp(read_input_file(path), path);
   std::error_code error;
   const auto file_bytes = fs::file_size(path, error);
@@ -525,7 +530,7 @@ SceneSoup read_scene_bytes(std::string_view bytes, const std::string& path,
   const std::string ext = lowercase_extension(path);
   if (ext == ".dae") check_collada(bytes, path);
   if (ext == ".3mf") check_3mf(bytes, path);
-  if (ext == ".gltf" || ext == ".glb") check_gltf_before_assimp(bytes, path);
+  if (ext == ".gltf" || ext == ".glb") check_gltf_before_assimp(bytes, path, false);
   if (ext == ".fbx") check_fbx_before_assimp(bytes, path);
   const std::string hint = ext.substr(1);
   return read_with_assimp(path, bytes.size(), limits, [&](Assimp::Importer& importer, unsigned flags) {
