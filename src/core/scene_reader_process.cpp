@@ -251,6 +251,14 @@ SceneSoup read_in_child_process(const std::string& path, const std::string& form
                                 const ReaderProcessLimits& limits,
                                 const std::function<SceneSoup()>& read) {
   const auto fail = [&](const std::string& what) { refuse(path, what); };
+  // The two limits, whether the parent's watch or the child's own rlimit met them first.
+  const auto out_of_time = [&] {
+    fail("reading this " + format + " file took longer than " + seconds_text(limits.seconds));
+  };
+  const auto out_of_memory = [&] {
+    fail("reading this " + format + " file needs more than " + gigabytes(limits.memory_bytes) +
+         " of memory (the limit for a file of its size)");
+  };
   int ends[2];
   if (pipe2(ends, O_CLOEXEC) != 0)
     fail(std::string("could not start the ") + format + " reader (" + std::strerror(errno) + ")");
@@ -307,14 +315,11 @@ SceneSoup read_in_child_process(const std::string& path, const std::string& form
     }
     if (end) break;
     const auto now = Clock::now();
-    if (std::chrono::duration<double>(now - start).count() > limits.seconds)
-      fail("reading this " + format + " file took longer than " + seconds_text(limits.seconds));
+    if (std::chrono::duration<double>(now - start).count() > limits.seconds) out_of_time();
     if (now - last_memory_check > std::chrono::milliseconds(50) && !exited) {
       last_memory_check = now;
       const size_t resident = memory_use(statm).resident_bytes;
-      if (resident > resident_at_start + limits.memory_bytes)
-        fail("reading this " + format + " file needs more than " +
-             gigabytes(limits.memory_bytes) + " of memory (the limit for a file of its size)");
+      if (resident > resident_at_start + limits.memory_bytes) out_of_memory();
     }
   }
   from_child.close_now();
@@ -334,8 +339,7 @@ SceneSoup read_in_child_process(const std::string& path, const std::string& form
         if (in.text(what)) throw Error(what);
         break;
       case Outcome::kOutOfMemory:
-        fail("reading this " + format + " file needs more than " +
-             gigabytes(limits.memory_bytes) + " of memory (the limit for a file of its size)");
+        out_of_memory();
         break;
       case Outcome::kOtherException:
         if (in.text(what)) fail("not a valid " + format + " file (Assimp: " + what + ")");
@@ -345,8 +349,7 @@ SceneSoup read_in_child_process(const std::string& path, const std::string& form
   // No complete reply: how the child ended says why.
   if (status != -1 && WIFSIGNALED(status)) {
     const int sig = WTERMSIG(status);
-    if (sig == SIGXCPU)
-      fail("reading this " + format + " file took longer than " + seconds_text(limits.seconds));
+    if (sig == SIGXCPU) out_of_time();
     if (sig == SIGKILL)
       fail("the " + format + " reader was killed (out of memory?) while reading this file");
     const char* name = strsignal(sig);
