@@ -57,7 +57,8 @@ nlohmann::json gltf_outline(std::string_view bytes, const std::string& path) {
         if (event == Event::key && depth == 1) {
           section = parsed.get<std::string>();
           return section == "buffers" || section == "bufferViews" || section == "accessors" ||
-                 section == "meshes" || section == "nodes" || section == "scenes";
+                 section == "meshes" || section == "nodes" || section == "scenes" ||
+                 section == "skins" || section == "animations";
         }
         // A buffer's data URI is kept for the accessor checks; images' are not.
         if (event == Event::value && section != "buffers" && parsed.is_string() &&

@@ -11,8 +11,8 @@
 namespace primo::detail {
 
 // The parts of a glTF's JSON that the checks before Assimp read: its buffers (with their data
-// URIs), buffer views, accessors, meshes, nodes and scenes (other data URIs, such as embedded
-// images, shortened), parsed once for all of them.
+// URIs), buffer views, accessors, meshes, nodes, scenes, skins and animations (other data URIs,
+// such as embedded images, shortened), parsed once for all of them.
 // `bytes` are the .gltf's text or at least the start of a .glb (its header and JSON chunk).
 // Throws Error naming `path` when the JSON nests deeper than kMaxJsonDepth (json_limits.h);
 // discarded when it does not parse, which is left to Assimp to name.
