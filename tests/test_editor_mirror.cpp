@@ -1,12 +1,15 @@
 // Symmetry: twin faces by position and by topology, and the editor selecting, painting and
-// posing on both sides of the mirror plane.
+// posing on both sides of the mirror plane, on exactly symmetric meshes and on a scan.
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <random>
 
 #include "editor_harness.h"
+#include "face_colors.h"
 #include "mirror.h"
 #include "primo/deformer.h"
 #include "primo/geometry.h"
@@ -261,4 +264,144 @@ TEST(MirrorMatch, TheShippedSpotIsMatchedByTopologyAcrossX) {
   EXPECT_EQ(map.matched, t.n_faces);
   expect_involution(map);
   EXPECT_LT(worst_reflection_error(t, map), 0.01 * t.bbox_diagonal);
+}
+
+namespace {
+
+// Every twin points back, and no two faces share one.
+void expect_one_to_one(const MirrorMap& map) {
+  std::vector<int> taken(map.face_twin.size(), 0);
+  for (size_t f = 0; f < map.face_twin.size(); ++f) {
+    const int g = map.face_twin[f];
+    if (g < 0) continue;
+    ASSERT_EQ(map.face_twin[size_t(g)], int(f)) << "twins point at each other";
+    ++taken[size_t(g)];
+  }
+  for (size_t g = 0; g < taken.size(); ++g) ASSERT_LE(taken[g], 1) << "face " << g << " is twice a twin";
+}
+
+// The `count` faces whose centroids are nearest face `seed`'s.
+std::vector<int> faces_around(const MeshTopology& t, int seed, size_t count) {
+  std::vector<std::pair<double, int>> by_distance;
+  for (int f = 0; f < t.n_faces; ++f)
+    by_distance.emplace_back(
+        (t.rest_geometry.centroid[size_t(f)] - t.rest_geometry.centroid[size_t(seed)]).norm(), f);
+  std::sort(by_distance.begin(), by_distance.end());
+  std::vector<int> faces;
+  for (size_t i = 0; i < count; ++i) faces.push_back(by_distance[i].second);
+  std::sort(faces.begin(), faces.end());
+  return faces;
+}
+
+// `faces` and their twins, as a brush stroke with the mirror on selects them.
+FaceMask mirrored_selection(const std::vector<int>& faces, const MirrorMap& map, int n_faces) {
+  FaceMask mask(size_t(n_faces), 0);
+  for (const int f : faces) {
+    mask[size_t(f)] = 1;
+    if (map.twin(f) >= 0) mask[size_t(map.twin(f))] = 1;
+  }
+  return mask;
+}
+
+// The face counts a message gives in parentheses, "(590 faces)", in order.
+std::vector<size_t> counts_in(const std::string& text) {
+  std::vector<size_t> counts;
+  for (size_t at = text.find('('); at != std::string::npos; at = text.find('(', at + 1)) {
+    size_t n = 0;
+    if (std::sscanf(text.c_str() + at, "(%zu faces)", &n) == 1) counts.push_back(n);
+  }
+  return counts;
+}
+
+}  // namespace
+
+TEST(MirrorMatch, ASymmetricShapeTessellatedAsymmetricallyIsMatchedOneToOne) {
+  // A sheet of triangles whose diagonals all lean the same way: across x = 0.5 the shape is
+  // symmetric but a triangle's reflection lands between two triangles of the other side.
+  const MeshTopology t = build_topology(make_grid(1.0, 1.0, 20, 20, FaceShape::Triangles));
+  const MirrorMap map = match_mirror_by_position(t, 0);
+  expect_one_to_one(map);
+  EXPECT_GT(map.matched, 9 * t.n_faces / 10) << "of " << t.n_faces;
+}
+
+TEST(MirrorMatch, AScanIsMatchedOneToOneByPosition) {
+  const MeshTopology t =
+      build_topology(load_mesh(primo::test::shared_path("meshes/armadillo_29k.obj")));
+  const MirrorMap map = match_mirror(t, 0);
+  EXPECT_FALSE(map.by_topology) << "the scan's two sides are tessellated differently";
+  expect_one_to_one(map);
+  // Half of the faces at least (the arms and legs are posed a little differently on each
+  // side), and the faces without a twin are the ones the view shades.
+  EXPECT_GT(map.matched, t.n_faces / 2);
+  const std::vector<char> without = faces_without_twin(map);
+  EXPECT_EQ(std::count(without.begin(), without.end(), 1), t.n_faces - map.matched);
+}
+
+TEST(EditorMirror, HandlesOnAScanKeepEveryFaceOfTheSelectionAndSayHowMany) {
+  Harness s(load_mesh(primo::test::shared_path("meshes/armadillo_29k.obj")));
+  Editor& e = s.editor;
+  const MeshTopology& t = *e.document()->topology;
+  e.set_mirror(0, true);
+  const MirrorMap& map = *e.mirror_map(0);
+  // The summary counts the faces left without a twin, and the view shades exactly those.
+  const int without = t.n_faces - map.matched;
+  EXPECT_NE(e.mirror_summary(0).find("the " + std::to_string(without) + " without one"),
+            std::string::npos)
+      << e.mirror_summary(0);
+  const std::vector<char> shaded = e.faces_without_twin();
+  ASSERT_EQ(shaded.size(), size_t(t.n_faces));
+  EXPECT_EQ(std::count(shaded.begin(), shaded.end(), 1), without);
+  int unshaded_face = -1, shaded_face = -1;
+  for (int f = 0; f < t.n_faces; ++f) (shaded[size_t(f)] ? shaded_face : unshaded_face) = f;
+  OverlayInputs overlay;
+  overlay.state = &e.document()->state;
+  overlay.n_faces = t.n_faces;
+  overlay.without_twin = &shaded;
+  const std::vector<std::uint32_t> colors = face_overlay_colors(overlay);
+  EXPECT_EQ(colors[size_t(unshaded_face)] >> 24, 0u) << "a face with a twin is not covered";
+  EXPECT_GT(colors[size_t(shaded_face)] >> 24, 100u) << "a face without one is shaded";
+
+  // A hand brushed with the mirror on: the 590 faces around the tip of the left arm, and the
+  // twins they have.
+  int tip = 0;
+  for (int f = 0; f < t.n_faces; ++f)
+    if (t.rest_geometry.centroid[size_t(f)].x() < t.rest_geometry.centroid[size_t(tip)].x()) tip = f;
+  const std::vector<int> hand = faces_around(t, tip, 590);
+  auto make_from = [&](const FaceMask& selection, HandleMode mode) {
+    e.document()->state.selection = std::make_shared<const FaceMask>(selection);
+    e.commit("Select");
+    const size_t handles_before = e.document()->state.handles.size();
+    e.make_handle(mode);
+    const auto& handles = e.document()->state.handles;
+    ASSERT_EQ(handles.size(), handles_before + 2) << "a mirrored pair";
+    const HandleGroup& a = handles[handles.size() - 2];
+    const HandleGroup& b = handles[handles.size() - 1];
+    EXPECT_EQ(a.mirror_twin, int(handles.size() - 1));
+    // Every selected face is in one of the two, and each is on its own side of the plane.
+    std::vector<int> both = *a.faces;
+    both.insert(both.end(), b.faces->begin(), b.faces->end());
+    std::sort(both.begin(), both.end());
+    EXPECT_EQ(both, selected_faces(selection)) << "no face of the selection is lost";
+    for (const int f : *a.faces) EXPECT_GT(t.rest_geometry.centroid[size_t(f)].x(), map.plane);
+    for (const int f : *b.faces) EXPECT_LT(t.rest_geometry.centroid[size_t(f)].x(), map.plane);
+    // The message gives each group's true size.
+    const std::string said = e.messages().back().text;
+    EXPECT_EQ(counts_in(said), (std::vector<size_t>{a.faces->size(), b.faces->size()})) << said;
+  };
+  const FaceMask hand_selected = mirrored_selection(hand, map, t.n_faces);
+  make_from(hand_selected, HandleMode::Pose);
+  int hand_without_twin = 0;
+  for (const int f : hand) hand_without_twin += map.twin(f) < 0;
+  ASSERT_GT(hand_without_twin, 0) << "the test needs a hand the other side does not mirror fully";
+  EXPECT_NE(e.messages().back().text.find(std::to_string(hand_without_twin) + " of the " +
+                                          std::to_string(count_selected(hand_selected)) +
+                                          " faces have no twin"),
+            std::string::npos)
+      << e.messages().back().text;
+
+  // Both legs box-selected with the mirror on and fixed: every face of them is fixed.
+  std::vector<int> legs;
+  for (int f = 0; f < t.n_faces; ++f)
+    if (t.rest_geometry.centroid[size_t(f)].y() < -0.4) legs.push_back(f);
+  make_from(mirrored_selection(legs, map, t.n_faces), HandleMode::Fixed);
 }

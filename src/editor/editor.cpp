@@ -383,6 +383,7 @@ void Editor::redo() {
 
 void Editor::set_selection(const FaceMask& mask, const std::string& label) {
   if (!doc_) return;
+  end_gesture_before_edit();
   FaceMask mirrored = mask;
   mirror_selection(*doc_->state.selection, mirrored);
   doc_->state.selection = std::make_shared<const FaceMask>(std::move(mirrored));
@@ -434,6 +435,7 @@ void Editor::shrink_selection() {
 
 void Editor::make_handle(HandleMode mode) {
   if (!doc_) return;
+  end_gesture_before_edit();
   std::vector<int> faces = selected_faces(*doc_->state.selection);
   if (faces.empty())
     return error("Select faces first: press Q and brush over the surface, then make the handle");
@@ -453,6 +455,7 @@ void Editor::make_handle(HandleMode mode) {
 
 void Editor::delete_handle(int index) {
   if (!doc_ || index < 0 || index >= int(doc_->state.handles.size())) return;
+  end_gesture_before_edit();
   const std::string name = doc_->state.handles[index].name;
   remove_handle(doc_->state, index);
   hovered_handle_ = -1;
@@ -461,6 +464,7 @@ void Editor::delete_handle(int index) {
 
 void Editor::reset_handle(int index) {
   if (!doc_ || index < 0 || index >= int(doc_->state.handles.size())) return;
+  end_gesture_before_edit();
   primo::editor::reset_handle(doc_->state, index);
   primo::editor::reset_handle(doc_->state, doc_->state.handles[size_t(index)].mirror_twin);
   commit("Reset '" + doc_->state.handles[index].name + "'");
@@ -468,6 +472,7 @@ void Editor::reset_handle(int index) {
 
 void Editor::reset_all_handles() {
   if (!doc_) return;
+  end_gesture_before_edit();
   for (size_t i = 0; i < doc_->state.handles.size(); ++i)
     primo::editor::reset_handle(doc_->state, int(i));
   commit("Reset all handles");
@@ -482,6 +487,7 @@ void Editor::set_active_handle(int index) {
 void Editor::set_handle_mode(int index, HandleMode mode) {
   if (!doc_ || index < 0 || index >= int(doc_->state.handles.size())) return;
   if (doc_->state.handles[index].mode == mode) return;
+  end_gesture_before_edit();
   primo::editor::set_handle_mode(doc_->state, index, mode);
   primo::editor::set_handle_mode(doc_->state, doc_->state.handles[size_t(index)].mirror_twin, mode);
   commit("'" + doc_->state.handles[index].name + "' to " + mode_label(mode));

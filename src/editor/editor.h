@@ -183,6 +183,9 @@ class Editor {
   const MirrorMap* mirror_map(int axis);
   // The status of mirroring across `axis` ("" when off): faces matched, by what.
   std::string mirror_summary(int axis) const;
+  // Per face: 1 where a mirror that is on has no twin for it (the view shades those: edits
+  // reach them on one side only). Empty while no mirror is on.
+  std::vector<char> faces_without_twin();
 
   void frame_all();
   void frame_selection();  // the selection, else the active handle, else everything
@@ -274,6 +277,15 @@ class Editor {
   void begin_tool_gesture(int mods);
   void update_gesture();
   void end_gesture();
+  // Commands that add, remove, renumber or re-mode handles end a gesture under way first, as
+  // releasing the button would: a drag holds its handle by index, and must not go on with
+  // whichever handle takes that index (a fixed region, after a Delete during the drag).
+  void end_gesture_before_edit();
+  // The handle a drag or gizmo gesture started on is still at drag_group_ and may be posed.
+  bool dragged_handle_intact() const;
+  // Stops a gesture without an undo step and without restoring the state: for a drag whose
+  // handle is gone.
+  void drop_gesture();
   void brush_dab();
   std::vector<int> faces_under(const ScreenShape& shape);
   int face_at_cursor();
@@ -341,6 +353,7 @@ class Editor {
   std::vector<glm::dvec2> lasso_;
   EditState gesture_start_state_;
   int drag_group_ = -1;
+  std::shared_ptr<const std::vector<int>> drag_faces_;  // the dragged handle's, to know it again
   glm::dvec3 drag_anchor_{0.0};
   Pose drag_start_pose_;
   SelectOp select_op_ = SelectOp::Add;

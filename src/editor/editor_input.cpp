@@ -138,6 +138,7 @@ void Editor::begin_tool_gesture(int mods) {
         if (part != GizmoPart::None) {
           gizmo_ = std::make_unique<GizmoDrag>(kind, part, camera_, center, cursor_);
           drag_group_ = s.active;
+          drag_faces_ = s.handles[s.active].faces;
           drag_start_pose_ = s.handles[s.active].pose;
           gesture_ = Gesture::Gizmo;
           return;
@@ -165,6 +166,7 @@ void Editor::begin_tool_gesture(int mods) {
     return;
   }
   drag_group_ = g;
+  drag_faces_ = s.handles[g].faces;
   drag_start_pose_ = s.handles[g].pose;
   // The grabbed point: where the cursor meets the surface (eye depth from the pick buffer).
   drag_anchor_ = handle_pivot(g);
@@ -182,6 +184,8 @@ void Editor::begin_tool_gesture(int mods) {
 }
 
 void Editor::update_gesture() {
+  if ((gesture_ == Gesture::DragHandle || gesture_ == Gesture::Gizmo) && !dragged_handle_intact())
+    return drop_gesture();
   const glm::dvec2 d = cursor_ - last_;
   EditState* s = doc_ ? &doc_->state : nullptr;
   switch (gesture_) {
@@ -223,6 +227,8 @@ void Editor::update_gesture() {
 }
 
 void Editor::end_gesture() {
+  if ((gesture_ == Gesture::DragHandle || gesture_ == Gesture::Gizmo) && !dragged_handle_intact())
+    return drop_gesture();
   const Gesture g = gesture_;
   gesture_ = Gesture::None;
   gesture_button_ = -1;
@@ -284,6 +290,7 @@ void Editor::end_gesture() {
   }
   gizmo_.reset();
   drag_group_ = -1;
+  drag_faces_.reset();
   if (what.empty()) return;
   current_gesture_.what = what;
   gesture_stats_ = current_gesture_;
@@ -296,13 +303,28 @@ void Editor::end_gesture() {
                 gesture_stats_.preview_updates);
 }
 
-void Editor::cancel_gesture() {
-  const Gesture g = gesture_;
+void Editor::end_gesture_before_edit() {
+  if (gesture_ != Gesture::None) end_gesture();
+}
+
+bool Editor::dragged_handle_intact() const {
+  if (!doc_ || drag_group_ < 0 || drag_group_ >= int(doc_->state.handles.size())) return false;
+  const HandleGroup& g = doc_->state.handles[size_t(drag_group_)];
+  return g.faces == drag_faces_ && is_draggable(g.mode);
+}
+
+void Editor::drop_gesture() {
   gesture_ = Gesture::None;
   gesture_button_ = -1;
   gizmo_.reset();
   drag_group_ = -1;
+  drag_faces_.reset();
   lasso_.clear();
+}
+
+void Editor::cancel_gesture() {
+  const Gesture g = gesture_;
+  drop_gesture();
   if (!doc_) return;
   if (g == Gesture::SelectBrush || g == Gesture::Paint || g == Gesture::DragHandle ||
       g == Gesture::Gizmo) {

@@ -11,6 +11,7 @@ namespace primo::editor {
 void Editor::set_mirror(int axis, bool on) {
   if (axis < 0 || axis > 2) return;
   tools.mirror[size_t(axis)] = on;
+  overlay_changed_ = true;  // the faces without a twin are shaded while a mirror is on
   if (!on) return info(std::string("Mirror ") + axis_name(axis) + " off");
   if (!doc_) return;
   mirror_map(axis);
@@ -34,9 +35,24 @@ std::string Editor::mirror_summary(int axis) const {
                      " faces have a twin (" + (map->by_topology ? "by topology" : "by position") +
                      ")";
   if (map->matched < n)
-    text += map->matched == 0 ? "; the mesh is not symmetric across this plane"
-                              : "; the others are edited on one side only";
+    text += map->matched == 0
+                ? "; the mesh is not symmetric across this plane"
+                : "; the " + std::to_string(n - map->matched) +
+                      " without one are shaded darker and edited on one side only";
   return text;
+}
+
+std::vector<char> Editor::faces_without_twin() {
+  if (!doc_) return {};
+  std::vector<char> without;
+  for (int axis = 0; axis < 3; ++axis) {
+    if (!tools.mirror[size_t(axis)]) continue;
+    const MirrorMap* map = mirror_map(axis);
+    const std::vector<char> here = primo::editor::faces_without_twin(*map);
+    if (without.empty()) without.assign(here.size(), 0);
+    for (size_t f = 0; f < here.size(); ++f) without[f] |= here[f];
+  }
+  return without;
 }
 
 void Editor::mirror_selection(const FaceMask& before, FaceMask& after) {
@@ -82,23 +98,28 @@ bool Editor::make_mirrored_handles(const std::vector<int>& faces, HandleMode mod
   if (axis < 0) return false;
   const MirrorMap& map = *mirror_map(axis);
   const FaceGeometry& rest = doc_->topology->rest_geometry;
+  auto side = [&](int f) { return rest.centroid[size_t(f)][axis] - map.plane; };
   // Faces within half their own size of the plane belong to both sides: a selection that
   // crosses the plane (a head, a tail) is one handle, posed freely.
-  std::vector<int> plus;
+  for (const int f : faces)
+    if (std::abs(side(f)) < 0.5 * std::sqrt(rest.area[size_t(f)])) return false;
+  // Each selected face and its twin go to the group of their own side. A face without a twin
+  // (a scan's two sides differ) stays in its side's group all the same: the selection is what
+  // the user marked, and its twin group is only as complete as the match.
+  std::vector<int> plus, minus;
+  int without_twin = 0;
   for (const int f : faces) {
-    const double side = rest.centroid[size_t(f)][axis] - map.plane;
-    if (std::abs(side) < 0.5 * std::sqrt(rest.area[size_t(f)])) return false;
+    (side(f) > 0 ? plus : minus).push_back(f);
     const int twin = map.twin(f);
-    if (side > 0) plus.push_back(f);
-    else if (twin >= 0) plus.push_back(twin);  // a face on the minus side stands for its twin
+    if (twin < 0)
+      ++without_twin;
+    else
+      (side(twin) > 0 ? plus : minus).push_back(twin);
   }
-  std::sort(plus.begin(), plus.end());
-  plus.erase(std::unique(plus.begin(), plus.end()), plus.end());
-  std::vector<int> minus;
-  for (const int f : plus)
-    if (map.twin(f) >= 0 && !std::binary_search(plus.begin(), plus.end(), map.twin(f)))
-      minus.push_back(map.twin(f));
-  std::sort(minus.begin(), minus.end());
+  for (std::vector<int>* group : {&plus, &minus}) {
+    std::sort(group->begin(), group->end());
+    group->erase(std::unique(group->begin(), group->end()), group->end());
+  }
   if (plus.empty() || minus.empty()) return false;
 
   EditState& s = doc_->state;
@@ -121,8 +142,13 @@ bool Editor::make_mirrored_handles(const std::vector<int>& faces, HandleMode mod
   s.selection = std::make_shared<const FaceMask>(std::move(none));
   commit("New mirrored " + std::string(mode_label(mode)) + " '" + base + "'");
   if (tools.tool == Tool::Select && is_draggable(mode)) set_tool(Tool::Drag);
-  info("Made '" + base + plus_suffix + "' and its mirror twin '" + base + minus_suffix + "' (" +
-       mode_label(mode) + ", " + std::to_string(plus.size()) + " faces each)");
+  std::string text = "Made '" + base + plus_suffix + "' (" + std::to_string(plus.size()) +
+                     " faces) and its twin '" + base + minus_suffix + "' (" +
+                     std::to_string(minus.size()) + " faces), " + mode_label(mode);
+  if (without_twin > 0)
+    text += "; " + std::to_string(without_twin) + " of the " + std::to_string(faces.size()) +
+            " faces have no twin across " + axis_name(axis);
+  info(text);
   return true;
 }
 

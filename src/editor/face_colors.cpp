@@ -39,6 +39,10 @@ Rgb handle_color(const HandleGroup& group) {
 
 Rgb selection_color() { return rgb(255, 152, 28); }
 
+// Dark rather than a hue: every hue already means something (handles, paint, selection), and
+// darker reads as "left out" over any of them.
+Rgb without_twin_color() { return rgb(16, 14, 28); }
+
 Rgb heat_color(double t) {
   static const Rgb stops[] = {rgb(48, 62, 150), rgb(40, 150, 230), rgb(30, 210, 170),
                               rgb(165, 230, 60), rgb(250, 185, 50), rgb(215, 40, 25)};
@@ -81,6 +85,9 @@ std::vector<std::uint32_t> face_overlay_colors(const OverlayInputs& in) {
         if (opacity > 0) over(c[f], color, opacity);
       }
   }
+  if (in.without_twin && int(in.without_twin->size()) == in.n_faces)
+    for (int f = 0; f < in.n_faces; ++f)
+      if ((*in.without_twin)[size_t(f)]) over(c[f], without_twin_color(), 0.55f);
   // Over the heat map, handles and the selection are lighter so the energy shows through.
   const float dim = in.face_energy ? 0.5f : 1.0f;
   for (size_t g = 0; g < s.handles.size(); ++g) {

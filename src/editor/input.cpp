@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <map>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
@@ -54,6 +55,34 @@ InputEvent InputEvent::drop(std::vector<std::string> paths) {
   e.type = Type::Drop;
   e.paths = std::move(paths);
   return e;
+}
+
+std::size_t one_ui_frame_of_input(const InputQueue& queue) {
+  using Type = InputEvent::Type;
+  std::optional<Type> changed;  // the kind of change this frame has taken
+  std::size_t n = 0;
+  for (const InputEvent& e : queue) {
+    switch (e.type) {
+      case Type::CursorMove:
+        if (changed == Type::MouseButton || changed == Type::Scroll) return n;
+        break;
+      case Type::Drop: break;
+      case Type::Key:
+        if (e.action == GLFW_REPEAT) break;
+        [[fallthrough]];
+      case Type::MouseButton:
+      case Type::Scroll:
+        if (changed) return n;
+        changed = e.type;
+        break;
+      case Type::Char:
+        if (changed && changed != Type::Char) return n;
+        changed = Type::Char;
+        break;
+    }
+    ++n;
+  }
+  return n;
 }
 
 int modifier_bit(int key) {

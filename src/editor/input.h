@@ -8,6 +8,7 @@
 #endif
 #include <GLFW/glfw3.h>
 
+#include <cstddef>
 #include <deque>
 #include <string>
 #include <vector>
@@ -35,6 +36,19 @@ struct InputEvent {
 };
 
 using InputQueue = std::deque<InputEvent>;
+
+// How many of the queue's first events one frame of the window's panels can take (at least
+// one, unless the queue is empty). Dear ImGui as Debian ships it (1.86) has no input queue: it
+// reads which keys and buttons are down, the pointer and the typed characters once per frame,
+// so a key pressed and released within one frame would never be down for it (a quick Enter
+// would leave a field in edit mode), and an arrow key or Backspace would act after characters
+// typed behind it.
+// A frame therefore takes at most one change of a key or button, one run of characters or one
+// wheel step; pointer moves, key repeats (Dear ImGui repeats by itself) and dropped files go
+// with any frame, but a move after a button change or a wheel step waits for the next frame
+// (the click or the scroll happened where the pointer was). The window runs as many panel
+// frames as its queue needs (ui/ui_input.h); the editor gets the same events in the same order.
+std::size_t one_ui_frame_of_input(const InputQueue& queue);
 
 // Modifier bit of a modifier key (GLFW_KEY_LEFT_SHIFT -> GLFW_MOD_SHIFT), 0 for other keys.
 int modifier_bit(int key);

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <deque>
 #include <numeric>
+#include <tuple>
 #include <unordered_map>
 
 namespace primo::editor {
@@ -16,18 +17,28 @@ class CentroidGrid {
   CentroidGrid(const std::vector<Vec3>& points, double cell) : points_(points), cell_(cell) {
     for (size_t i = 0; i < points.size(); ++i) cells_[key(cell_of(points[i]))].push_back(int(i));
   }
-  // Nearest point within `radius` (at most one cell), or -1.
+  // Nearest point within `radius`, or -1.
   int nearest(const Vec3& p, double radius) const {
     const std::vector<int> one = nearest(p, radius, 1);
     return one.empty() ? -1 : one.front();
   }
-  // Up to `k` points within `radius`, nearest first.
+  // Up to `k` points within `radius`, nearest first (ties by index).
   std::vector<int> nearest(const Vec3& p, double radius, size_t k) const {
-    const Eigen::Vector3i c = cell_of(p);
     std::vector<std::pair<double, int>> found;
-    for (int dx = -1; dx <= 1; ++dx)
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dz = -1; dz <= 1; ++dz) {
+    within(p, radius, found);
+    std::sort(found.begin(), found.end());
+    std::vector<int> out;
+    for (size_t i = 0; i < found.size() && i < k; ++i) out.push_back(found[i].second);
+    return out;
+  }
+  // Every point within `radius` with its squared distance, in no order.
+  void within(const Vec3& p, double radius, std::vector<std::pair<double, int>>& found) const {
+    found.clear();
+    const Eigen::Vector3i c = cell_of(p);
+    const int span = std::max(1, int(std::ceil(radius / cell_)));
+    for (int dx = -span; dx <= span; ++dx)
+      for (int dy = -span; dy <= span; ++dy)
+        for (int dz = -span; dz <= span; ++dz) {
           const auto it = cells_.find(key(c + Eigen::Vector3i(dx, dy, dz)));
           if (it == cells_.end()) continue;
           for (const int i : it->second) {
@@ -35,10 +46,6 @@ class CentroidGrid {
             if (d2 < radius * radius) found.emplace_back(d2, i);
           }
         }
-    std::sort(found.begin(), found.end());
-    std::vector<int> out;
-    for (size_t i = 0; i < found.size() && i < k; ++i) out.push_back(found[i].second);
-    return out;
   }
 
  private:
@@ -83,6 +90,52 @@ std::vector<int> nearest_twins(const MeshTopology& t, const MirrorMap& map, doub
     twin[size_t(f)] = grid.nearest(r, reach * size);
     if (errors && twin[size_t(f)] >= 0) (*errors)[size_t(f)] = (c[size_t(twin[size_t(f)])] - r).norm();
   }
+  return twin;
+}
+
+// Each face's mean edge length at rest: the scale of a reflection's error, local because a
+// remeshed scan has small faces where it is detailed and large ones where it is flat.
+std::vector<double> mean_edge_lengths(const MeshTopology& t) {
+  std::vector<double> length(size_t(t.n_faces), 0.0);
+  for (int f = 0; f < t.n_faces; ++f) {
+    const int b = t.face_begin[f], d = t.degree(f);
+    for (int k = 0; k < d; ++k)
+      length[size_t(f)] += (t.rest_points[size_t(t.face_vertices[size_t(b + (k + 1) % d)])] -
+                            t.rest_points[size_t(t.face_vertices[size_t(b + k)])])
+                               .norm();
+    length[size_t(f)] /= std::max(d, 1);
+  }
+  return length;
+}
+
+// Twins one to one: every pair of faces whose reflected centroid lands within `reach` edge
+// lengths of the other's (the larger face's edge), nearest pairs first, each face taken once.
+// The distance is the same seen from either face (a reflection keeps distances), so the result
+// is an involution; a face on the plane may be its own twin.
+std::vector<int> one_to_one_twins(const MeshTopology& t, const MirrorMap& map, double reach) {
+  const std::vector<Vec3>& c = t.rest_geometry.centroid;
+  const std::vector<double> edge = mean_edge_lengths(t);
+  std::vector<double> sorted = edge;
+  std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
+  const double floor = 1e-12 * std::max(t.bbox_diagonal, 1e-300);
+  const CentroidGrid grid(c, reach * std::max(sorted[sorted.size() / 2], floor));
+  struct Pair {
+    double distance;
+    int a, b;
+    bool operator<(const Pair& o) const {
+      return std::tie(distance, a, b) < std::tie(o.distance, o.a, o.b);
+    }
+  };
+  std::vector<Pair> pairs;
+  std::vector<std::pair<double, int>> found;
+  for (int f = 0; f < t.n_faces; ++f) {
+    grid.within(reflect(map, c[size_t(f)]), reach * std::max(edge[size_t(f)], floor), found);
+    for (const auto& [d2, g] : found) pairs.push_back({std::sqrt(d2), std::min(f, g), std::max(f, g)});
+  }
+  std::sort(pairs.begin(), pairs.end());
+  std::vector<int> twin(size_t(t.n_faces), -1);
+  for (const Pair& p : pairs)
+    if (twin[size_t(p.a)] < 0 && twin[size_t(p.b)] < 0) twin[size_t(p.a)] = p.b, twin[size_t(p.b)] = p.a;
   return twin;
 }
 
@@ -203,7 +256,7 @@ Vec3 reflect(const MirrorMap& map, const Vec3& p) {
   return r;
 }
 
-MirrorMap match_mirror_by_position(const MeshTopology& t, int axis) {
+MirrorMap match_mirror_by_position(const MeshTopology& t, int axis, double reach) {
   MirrorMap map = empty_map(t, axis);
   if (t.n_faces == 0) return map;
   // A scanned or sculpted mesh is rarely centred on its own bounding box along the mirror
@@ -219,9 +272,7 @@ MirrorMap match_mirror_by_position(const MeshTopology& t, int axis) {
     std::nth_element(middle.begin(), middle.begin() + middle.size() / 2, middle.end());
     map.plane = middle[middle.size() / 2];
   }
-  // Within one face size: a face's twin is the face its reflection lands on (not always the
-  // other way round where the two sides are meshed differently).
-  map.face_twin = nearest_twins(t, map, 1.0, nullptr);
+  map.face_twin = one_to_one_twins(t, map, reach);
   for (const int g : map.face_twin) map.matched += g >= 0;
   return map;
 }
@@ -323,6 +374,12 @@ FactorArray mirror_changes(const FactorArray& before, const FactorArray& after, 
   if (!any) return after;
   if (std::all_of(result.begin(), result.end(), [](double v) { return v == 1.0; })) return nullptr;
   return std::make_shared<const std::vector<double>>(std::move(result));
+}
+
+std::vector<char> faces_without_twin(const MirrorMap& map) {
+  std::vector<char> without(map.face_twin.size(), 0);
+  for (size_t f = 0; f < without.size(); ++f) without[f] = map.face_twin[f] < 0;
+  return without;
 }
 
 std::vector<int> mirror_faces(const std::vector<int>& faces, const MirrorMap& map) {

@@ -5,7 +5,8 @@
 //  - `primo deform` on the saved scenario gives the editor's mesh (1e-6 of the bbox diagonal),
 //  - the screenshots show the mesh, not a blank or error frame;
 //  - the ground grid is drawn on screen but left out of a clean screenshot;
-//  - a drag of a million faces shows previews while the fine levels would take too long.
+//  - a drag of a million faces shows previews while the fine levels would take too long;
+//  - keys tapped faster than a frame (a chord, Enter in the save dialog) are not lost.
 // Artifacts stay in <build>/tests/e2e-artifacts/<test>/.
 
 #include <gtest/gtest.h>
@@ -452,4 +453,62 @@ quit
   // two-thread benchmark beside it; a full-resolution cycle alone takes 0.6 s there.
   EXPECT_GE(per_second, 1.0);
   expect_mesh_in_screenshot(dir + "/after.png");
+}
+
+TEST(EditorE2E, QuickKeysInTheSaveDialogAreNotLost) {
+  // Real X input, every key down and up back to back (xdotool --delay 0), as a fast typist's
+  // taps land within one frame: Ctrl+Shift+S opens the save dialog, Ctrl+A selects the
+  // proposed name, the new path is typed over it, Enter saves. Sampled once per frame, the
+  // panels would lose the Ctrl+A (the path would be typed after the proposed name) and the
+  // Enter (the dialog would stay open).
+  if (run("command -v xdotool > /dev/null") != 0) GTEST_SKIP() << "xdotool is not installed";
+  const std::string dir = artifacts("quick-keys");
+  const std::string scenario = make_bar_scenario(dir);
+  const std::string saved = dir + "/typed.json";
+  write_text(dir + "/sync.txt", R"(wait-settled 60
+echo ready
+wait-file )" + dir + R"(/typed 60
+quit
+)");
+  const std::string log = dir + "/editor.log";
+  const pid_t pid = fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    const std::string cmd = "exec " + kPrimo + " edit " + scenario + " --script " + dir +
+                            "/sync.txt > " + log + " 2>&1";
+    execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  bool ready = false;
+  for (int i = 0; i < 600 && !ready; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    ready = read_text(log).find("\nready\n") != std::string::npos;
+  }
+  ASSERT_TRUE(ready) << read_text(log);
+  // The pointer over the 3D view gives the window the keyboard (no window manager).
+  const std::string keys = "w=$(xdotool search --sync --name PriMo | head -n 1); "
+                           "xdotool mousemove --window $w 400 400; sleep 0.3; "
+                           "xdotool key --delay 0 ctrl+shift+s; sleep 0.5; "
+                           "xdotool key --delay 0 ctrl+a; "
+                           "xdotool type --delay 0 '" + saved + "'; "
+                           "xdotool key --delay 0 Return";
+  EXPECT_EQ(run(keys), 0);
+  for (int i = 0; i < 100 && !fs::exists(saved); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  write_text(dir + "/typed", "");
+  int status = 0;
+  for (int i = 0; i < 600; ++i) {
+    if (waitpid(pid, &status, WNOHANG) == pid) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    if (i == 599) {
+      kill(pid, SIGKILL);
+      waitpid(pid, &status, 0);
+      FAIL() << "the editor did not finish: " << read_text(log);
+    }
+  }
+  std::printf("%s", read_text(log).c_str());
+  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << read_text(log);
+  ASSERT_TRUE(fs::exists(saved)) << "Enter saved under the typed name";
+  EXPECT_EQ(load_scenario(saved).handles.size(), 2u);
+  EXPECT_NE(read_text(log).find("Saved the scenario to " + saved), std::string::npos);
 }

@@ -30,6 +30,7 @@
 #include "run_deadline.h"
 #include "screenshot.h"
 #include "script.h"
+#include "ui_input.h"
 
 namespace primo::editor {
 namespace {
@@ -120,7 +121,7 @@ class App : public ScriptHost {
   // ScriptHost
   void push_input(const InputEvent& e) override { queue_.push_back(e); }
   void locate(const ScriptCommand& c, double& x, double& y) override;
-  void cursor(double& x, double& y) override { x = cursor_.x, y = cursor_.y; }
+  void cursor(double& x, double& y) override { x = ui_input_.cursor().x, y = ui_input_.cursor().y; }
   bool settled() override { return editor_.settled() && renderer_->has_mesh(); }
   bool nothing_open() override { return !editor_.document() && !editor_.file_task_running(); }
   void run(const ScriptCommand& c) override;
@@ -131,7 +132,7 @@ class App : public ScriptHost {
 
  private:
   void frame(double now, double dt);
-  void feed_imgui();
+  void begin_ui_frame(const InputQueue& batch);
   void sync_renderer();
   void take_screenshot(const ViewportRect& vp, int fb_width, int fb_height, bool with_ui_drawn);
   void fail(const std::string& message);
@@ -150,10 +151,8 @@ class App : public ScriptHost {
   UiState ui_;
   std::unique_ptr<MeshRenderer> renderer_;
   std::unique_ptr<ScriptPlayer> script_;
-  InputQueue queue_;
-  glm::dvec2 cursor_{-1.0};
-  bool buttons_[3] = {false, false, false};
-  bool just_pressed_[3] = {false, false, false};
+  InputQueue queue_;  // GLFW's and the script's events, in order, until a panel frame takes them
+  UiInput ui_input_;
   const MeshTopology* shown_topology_ = nullptr;
   const ProxyTriangles* shown_proxy_ = nullptr;       // null until the document's proxy is built
   bool software_renderer_ = false;
@@ -190,35 +189,6 @@ void App::install_callbacks() {
   });
   glfwSetWindowFocusCallback(window_, ImGui_ImplGlfw_WindowFocusCallback);
   glfwSetCursorEnterCallback(window_, ImGui_ImplGlfw_CursorEnterCallback);
-}
-
-// Real and scripted events reach ImGui the same way: keys, characters and wheel through the
-// backend's handlers, pointer and buttons from our own state (set after its NewFrame).
-void App::feed_imgui() {
-  for (const InputEvent& e : queue_) {
-    switch (e.type) {
-      case InputEvent::Type::Key:
-        ImGui_ImplGlfw_KeyCallback(window_, e.key, e.scancode, e.action, e.mods);
-        break;
-      case InputEvent::Type::Char:
-        ImGui_ImplGlfw_CharCallback(window_, e.codepoint);
-        break;
-      case InputEvent::Type::Scroll:
-        ImGui_ImplGlfw_ScrollCallback(window_, e.x, e.y);
-        break;
-      case InputEvent::Type::MouseButton:
-        if (e.button >= 0 && e.button < 3) {
-          buttons_[e.button] = e.action == GLFW_PRESS;
-          if (e.action == GLFW_PRESS) just_pressed_[e.button] = true;
-        }
-        break;
-      case InputEvent::Type::CursorMove:
-        cursor_ = {e.x, e.y};
-        break;
-      case InputEvent::Type::Drop:
-        break;
-    }
-  }
 }
 
 void App::locate(const ScriptCommand& c, double& x, double& y) {
@@ -374,6 +344,8 @@ void App::sync_renderer() {
       in.energy_scale = g->energy_scale;
     }
     in.hovered_handle = editor_.hovered_handle();
+    const std::vector<char> without_twin = editor_.faces_without_twin();
+    in.without_twin = &without_twin;
     renderer_->set_face_colors(face_overlay_colors(in));
   }
 }
@@ -396,20 +368,16 @@ void App::take_screenshot(const ViewportRect& vp, int fb_width, int fb_height, b
   ui_.screenshot_path.clear();
 }
 
-void App::frame(double now, double dt) {
-  if (script_ && !script_->finished()) {
-    script_->update(now, *this);
-    if (script_->failed()) out_of_time() ? stop_at_timeout() : fail(script_->error());
-  }
-  feed_imgui();
+// A Dear ImGui frame for one batch of the queued events (ui_input.h): fed, begun, and each
+// event routed to whoever takes it as of this frame.
+void App::begin_ui_frame(const InputQueue& batch) {
+  ui_input_.feed(batch);
   ImGui_ImplOpenGL3_NewFrame();
   ImGui_ImplGlfw_NewFrame();
+  ui_input_.apply_pointer();
   ImGuiIO& io = ImGui::GetIO();
-  io.MousePos = ImVec2(float(cursor_.x), float(cursor_.y));
-  for (int b = 0; b < 3; ++b) {
-    io.MouseDown[b] = buttons_[b] || just_pressed_[b];
-    just_pressed_[b] = false;
-  }
+  // Frames for a batch follow each other within microseconds; Dear ImGui needs time to pass.
+  io.DeltaTime = std::max(io.DeltaTime, 1e-4f);
   ImGui::NewFrame();
 
   int win_w, win_h, fb_w, fb_h;
@@ -417,25 +385,33 @@ void App::frame(double now, double dt) {
   glfwGetFramebufferSize(window_, &fb_w, &fb_h);
   const float scale = win_w > 0 ? float(fb_w) / float(win_w) : 1.0f;
   if (ui_.show_panels && ui_.menu_height == 0.0f) ui_.menu_height = ImGui::GetFrameHeight();
-  const ViewportRect vp = viewport_rect(ui_, float(win_w), float(win_h), scale);
-  editor_.set_viewport(vp);
+  editor_.set_viewport(viewport_rect(ui_, float(win_w), float(win_h), scale));
+  route_input(batch, editor_, ui_);
+}
 
-  // An open menu (or other non-modal popup) owns the keyboard: Esc closes it, and no shortcut
-  // reaches the editor behind it (Ctrl+Z with the File menu open used to undo).
-  const bool menu_open =
-      ImGui::IsPopupOpen("", ImGuiPopupFlags_AnyPopupId | ImGuiPopupFlags_AnyPopupLevel) &&
-      !ImGui::GetTopMostPopupModal();
-  for (const InputEvent& e : queue_) {
-    if (capture_key(e, editor_, ui_)) continue;  // Preferences > Keys waits for a new key
-    if (menu_open && (e.type == InputEvent::Type::Key || e.type == InputEvent::Type::Char)) {
-      if (e.type == InputEvent::Type::Key && e.key == GLFW_KEY_ESCAPE && e.action == GLFW_PRESS)
-        ImGui::ClosePopupToLevel(0, true);
-      continue;
-    }
-    if (!io.WantCaptureKeyboard && handle_app_shortcut(e, editor_, ui_)) continue;
-    editor_.handle_event(e, io.WantCaptureMouse, io.WantCaptureKeyboard);
+void App::frame(double now, double dt) {
+  if (script_ && !script_->finished()) {
+    script_->update(now, *this);
+    if (script_->failed()) out_of_time() ? stop_at_timeout() : fail(script_->error());
   }
-  queue_.clear();
+  // As many panel frames as the queued events need, each laid out; the last one is drawn. A
+  // frame drawn slowly (a big mesh in software) still sees every key tap as a press.
+  constexpr int kMostPanelFramesPerFrame = 64;  // the rest waits for the next frame
+  for (int panel_frames = 1;; ++panel_frames) {
+    const auto taken = queue_.begin() + std::ptrdiff_t(one_ui_frame_of_input(queue_));
+    const InputQueue batch(queue_.begin(), taken);
+    queue_.erase(queue_.begin(), taken);
+    begin_ui_frame(batch);
+    if (queue_.empty() || panel_frames == kMostPanelFramesPerFrame) break;
+    draw_ui(editor_, ui_);
+    ImGui::EndFrame();
+  }
+
+  int win_w, win_h, fb_w, fb_h;
+  glfwGetWindowSize(window_, &win_w, &win_h);
+  glfwGetFramebufferSize(window_, &fb_w, &fb_h);
+  const float scale = win_w > 0 ? float(fb_w) / float(win_w) : 1.0f;
+  const ViewportRect vp = editor_.viewport();
   editor_.update(dt);
   sync_renderer();
   draw_ui(editor_, ui_);
@@ -541,7 +517,8 @@ int App::run() {
       stop_at_timeout();
       break;
     }
-    const bool animate = editor_.solver_status().busy() || editor_.file_task_running() || script_ ||
+    const bool animate = !queue_.empty() || editor_.solver_status().busy() ||
+                         editor_.file_task_running() || script_ ||
                          screenshot_run_ || editor_.gesture() != Editor::Gesture::None ||
                          editor_.camera().update(0.0) || renderer_->drew_proxy();
     if (animate) {

@@ -1,6 +1,7 @@
 #include "panels.h"
 
 #include <imgui.h>
+#include <imgui_internal.h>  // GetActiveID
 #include <imgui_stdlib.h>
 
 #include <Eigen/Geometry>
@@ -26,6 +27,20 @@ namespace {
 ImU32 u32(float r, float g, float b, float a = 1.0f) {
   return ImGui::ColorConvertFloat4ToU32(ImVec4(r, g, b, a));
 }
+
+// The active handle's rotation as its Axis and Angle fields hold it while one of them is
+// being edited. Read back from the rotation at every frame they would come back changed: an
+// axis typed as (1, 1, 0) normalised, 270 degrees as 90 about the opposite axis, the
+// quaternion's sign flipped. A field in text mode applies its text at every frame, so the
+// handle would be posed anew at every frame and the solver would start over at iteration 0 for
+// as long as the field stays open (and a drag past 180 degrees would bounce back).
+struct RotationFields {
+  const void* handle_faces = nullptr;  // whose rotation they hold (a handle's faces are its own)
+  ImGuiID editing = 0;                 // the field being edited in the last frame (0: none)
+  Vec3 axis = Vec3::UnitY();
+  double angle_deg = 0.0;
+};
+RotationFields rotation_fields;
 
 // One widget interaction = one undo step: live while active, committed on release.
 void track_edit(Editor& e, bool changed, const std::string& label) {
@@ -322,20 +337,32 @@ void handles_section(Editor& e) {
                  "Move '" + h.name + "'");
     }
     if (uses_rotation(h.mode)) {
-      Eigen::AngleAxisd aa(h.pose.rotation);
-      double angle = aa.angle() * 180.0 / M_PI;
-      Vec3 axis = aa.angle() != 0.0 ? aa.axis() : Vec3::UnitY();
+      RotationFields& fields = rotation_fields;
+      if (fields.editing == 0 || fields.editing != ImGui::GetActiveID() ||
+          fields.handle_faces != h.faces.get()) {
+        const Eigen::AngleAxisd aa(h.pose.rotation);
+        fields.angle_deg = aa.angle() * 180.0 / M_PI;
+        fields.axis = aa.angle() != 0.0 ? aa.axis() : Vec3::UnitY();
+      }
       ImGui::SetNextItemWidth(-60);
-      bool changed = ImGui::DragScalarN("Axis", ImGuiDataType_Double, axis.data(), 3, 0.01f, nullptr,
-                                        nullptr, "%.3f");
+      bool changed = ImGui::DragScalarN("Axis", ImGuiDataType_Double, fields.axis.data(), 3, 0.01f,
+                                        nullptr, nullptr, "%.3f");
+      fields.editing = ImGui::IsItemActive() ? ImGui::GetActiveID() : 0;
       const bool axis_done = ImGui::IsItemDeactivatedAfterEdit();
       ImGui::SetNextItemWidth(-60);
       const double amin = -360, amax = 360;
-      changed |= ImGui::DragScalar("Angle", ImGuiDataType_Double, &angle, 0.5f, &amin, &amax, "%.2f deg");
+      changed |= ImGui::DragScalar("Angle", ImGuiDataType_Double, &fields.angle_deg, 0.5f, &amin,
+                                   &amax, "%.2f deg");
+      if (ImGui::IsItemActive()) fields.editing = ImGui::GetActiveID();
+      fields.handle_faces = h.faces.get();
       const bool angle_done = ImGui::IsItemDeactivatedAfterEdit();
-      if (changed && axis.norm() > 1e-12) {
-        h.pose.rotation = Eigen::Quaterniond(Eigen::AngleAxisd(angle * M_PI / 180.0, axis.normalized()));
-        e.live_edit();
+      if (changed && fields.axis.norm() > 1e-12) {
+        const Eigen::Quaterniond rotation(
+            Eigen::AngleAxisd(fields.angle_deg * M_PI / 180.0, fields.axis.normalized()));
+        if (rotation.coeffs() != h.pose.rotation.coeffs()) {
+          h.pose.rotation = rotation;
+          e.live_edit();
+        }
       }
       if (axis_done || angle_done) e.commit("Rotate '" + h.name + "'");
     }
