@@ -77,6 +77,9 @@ struct Handle {
   std::vector<int> faces;
   Fix fix = Fix::All;
   RigidTransform transform;
+  // The transform's rotation with its whole turns (turn.h): rotation_of_turn(*turn) is
+  // transform.rotation. Absent: the principal one, at most half a turn.
+  std::optional<Vec3> turn;
 };
 
 // Zero-rest-length springs pulling each face's moved rest centroid towards centroid + offset.

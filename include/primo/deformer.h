@@ -141,7 +141,12 @@ class Deformer {
   // Moves a handle's target. Fixed handles jump there; position handles move their pinned
   // centroid and keep their current rotation; orientation handles take the new rotation and
   // keep their current translation. Free prisms are untouched (warm start).
-  void set_handle_transform(int handle, const RigidTransform& transform);
+  // `turn` is the rotation with its whole turns (turn.h), which a path from the state solved
+  // before follows through its whole angle; absent, the turn of the rotation nearest the
+  // handle's current one (small steps accumulate, as a drag's frames do). Throws Error when
+  // the turn does not make the rotation.
+  void set_handle_transform(int handle, const RigidTransform& transform,
+                            const std::optional<Vec3>& turn = std::nullopt);
   void set_force_offset(int force, const Vec3& target_offset);
 
   // Runs iterations from the current state until the stopping rule of the scenario format.
@@ -276,13 +281,16 @@ class Deformer {
   // at first, the set targets after every solve, the targets of the sub-step reached when a
   // path is interrupted.
   std::vector<RigidTransform> solved_transforms_;
+  std::vector<Vec3> solved_turns_;  // their rotations' turns (handles_[h].turn is the target's)
   std::vector<Vec3> solved_offsets_;
   // A path a call's budget cut short (follow_path): its targets, the sub-step it was in and
   // the iterations that had, and its drag predictor's record, for the next call.
   struct PathProgress {
     std::vector<RigidTransform> end;
+    std::vector<Vec3> end_turns;
     std::vector<Vec3> end_offsets;
     std::vector<RigidTransform> step;
+    std::vector<Vec3> step_turns;
     std::vector<Vec3> step_offsets;
     int step_iterations = 0;
     DragPredictor predictor;

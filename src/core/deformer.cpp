@@ -9,6 +9,7 @@
 #include "primo/error.h"
 #include "primo/local_solver.h"
 #include "primo/mesh_order.h"
+#include "primo/turn.h"
 
 namespace primo {
 namespace {
@@ -36,6 +37,16 @@ void check_transform(const Handle& h, size_t index, const RigidTransform& t) {
     throw Error(handle_label(h, index) + ": the transform's rotation is not a rotation");
 }
 
+// A handle's turn makes its rotation; absent, the principal one is taken.
+void check_turn(Handle& h, size_t index) {
+  if (!h.turn) {
+    h.turn = nearest_turn(h.transform.rotation);
+    return;
+  }
+  if (!turn_makes(*h.turn, h.transform.rotation))
+    throw Error(handle_label(h, index) + ": the turn does not make the transform's rotation");
+}
+
 // Bit for bit: a resumed path recomputes its sub-step from the same inputs.
 bool same_transforms(const std::vector<RigidTransform>& a, const std::vector<RigidTransform>& b) {
   if (a.size() != b.size()) return false;
@@ -44,14 +55,25 @@ bool same_transforms(const std::vector<RigidTransform>& a, const std::vector<Rig
   return true;
 }
 
-// The transform a fraction s of the way from `from` to `to`, for a body whose rest centre is
-// `center`: the centre moves on the straight line, the body turns on the shorter great
-// circle about it, as a handle dragged and turned with the gizmo does.
-RigidTransform interpolate(const RigidTransform& from, const RigidTransform& to,
-                           const Vec3& center, double s) {
-  const Eigen::Quaterniond q0(from.rotation), q1(to.rotation);
+// Each handle's turn equals as well: the same rotation may be another number of turns.
+bool same_turns(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
+  if (a.size() != b.size()) return false;
+  for (size_t i = 0; i < a.size(); ++i)
+    if (a[i] != b[i]) return false;
+  return true;
+}
+
+// The transform a fraction s of the way from `from` (turned `from_turn`) to `to` (turned
+// `to_turn`), for a body whose rest centre is `center`: the centre moves on the straight line,
+// the body turns about it by the same fraction of the turn between them, whole turns
+// included, as a handle dragged and turned with the gizmo does. Between turns about one axis
+// this is the turn itself; from rest it is the shorter great circle for a turn of at most
+// half a turn.
+RigidTransform interpolate(const RigidTransform& from, const Vec3& from_turn,
+                           const RigidTransform& to, const Vec3& to_turn, const Vec3& center,
+                           double s) {
   RigidTransform t;
-  t.rotation = q0.slerp(s, q1).toRotationMatrix();
+  t.rotation = rotation_of_turn((1.0 - s) * from_turn + s * to_turn);
   const Vec3 c = (1.0 - s) * from.apply(center) + s * to.apply(center);
   t.translation = c - t.rotation * center;
   return t;
@@ -112,6 +134,7 @@ Deformer::Deformer(const Mesh& mesh, const PrismParameters& params, std::vector<
       face_body[size_t(solver_face[size_t(f)])] = int(h);
     }
     check_transform(handles_[h], h, handles_[h].transform);
+    check_turn(handles_[h], h);
     kinds.push_back(body_kind(handles_[h].fix));
   }
   for (int f = 0; f < n_faces; ++f) {
@@ -176,6 +199,7 @@ Deformer::Deformer(Deformer&& other) noexcept
       exact_newton_(other.exact_newton_),
       known_energy_(other.known_energy_),
       solved_transforms_(std::move(other.solved_transforms_)),
+      solved_turns_(std::move(other.solved_turns_)),
       solved_offsets_(std::move(other.solved_offsets_)) {
   // A preview under way is carried into the state (its solver reads nothing of the system).
   if (other.previewing()) other.hierarchical_->end_preview(state_);
@@ -201,6 +225,7 @@ Deformer& Deformer::operator=(Deformer&& other) noexcept {
   exact_newton_ = other.exact_newton_;
   known_energy_ = other.known_energy_;
   solved_transforms_ = std::move(other.solved_transforms_);
+  solved_turns_ = std::move(other.solved_turns_);
   solved_offsets_ = std::move(other.solved_offsets_);
   path_ = {};           // its predictor's record refers to the other system's address
   solved_to_minimum_ = other.solved_to_minimum_;
@@ -248,6 +273,7 @@ void Deformer::reset() {
   exact_newton_ = false;
   // Free prisms at rest are the solution for handles at rest: a path starts there.
   solved_transforms_.assign(handles_.size(), RigidTransform::identity());
+  solved_turns_.assign(handles_.size(), Vec3::Zero());
   solved_offsets_.assign(forces_.size(), Vec3::Zero());
   rebuild_springs();
   state_.resize(system_.n_bodies());
@@ -256,10 +282,17 @@ void Deformer::reset() {
                                          : BodyState{Mat3::Identity(), system_.bodies[b].rest_center};
 }
 
-void Deformer::set_handle_transform(int handle, const RigidTransform& transform) {
+void Deformer::set_handle_transform(int handle, const RigidTransform& transform,
+                                    const std::optional<Vec3>& turn) {
   if (handle < 0 || handle >= int(handles_.size())) throw Error("no such handle");
-  check_transform(handles_[size_t(handle)], size_t(handle), transform);
-  handles_[handle].transform = transform;
+  Handle& h = handles_[size_t(handle)];
+  check_transform(h, size_t(handle), transform);
+  Handle moved = h;
+  moved.transform = transform;
+  moved.turn = turn ? turn : nearest_turn(transform.rotation, *h.turn);
+  check_turn(moved, size_t(handle));
+  h.transform = transform;
+  h.turn = moved.turn;
   place_handle(handle, transform);
 }
 
@@ -310,10 +343,8 @@ std::vector<double> Deformer::target_move(const PathOptions& limits) const {
     const Vec3& center = system_.bodies[h].rest_center;
     const Fix fix = handles_[h].fix;
     if (fix != Fix::Orientation) add((to.apply(center) - from.apply(center)) / move);
-    if (fix != Fix::Position) {
-      const Eigen::AngleAxisd turn(Mat3(to.rotation * from.rotation.transpose()));
-      add(turn.axis() * (turn.angle() * 180.0 / M_PI / limits.max_turn_deg));
-    }
+    if (fix != Fix::Position)
+      add((*handles_[h].turn - solved_turns_[h]) * (180.0 / M_PI / limits.max_turn_deg));
   }
   for (size_t f = 0; f < forces_.size(); ++f)
     add((forces_[f].target_offset - solved_offsets_[f]) / move);
@@ -342,7 +373,10 @@ void Deformer::predict(DragPredictor& predictor, const std::vector<double>& move
 }
 
 void Deformer::solved_for_current_targets() {
-  for (size_t h = 0; h < handles_.size(); ++h) solved_transforms_[h] = handles_[h].transform;
+  for (size_t h = 0; h < handles_.size(); ++h) {
+    solved_transforms_[h] = handles_[h].transform;
+    solved_turns_[h] = *handles_[h].turn;
+  }
   for (size_t f = 0; f < forces_.size(); ++f) solved_offsets_[f] = forces_[f].target_offset;
 }
 
@@ -579,10 +613,16 @@ bool Deformer::follow_path(const SolveOptions& options, SolveReport& report) {
     return true;
   }
   std::vector<RigidTransform> end(handles_.size());
-  for (size_t h = 0; h < handles_.size(); ++h) end[h] = handles_[h].transform;
+  std::vector<Vec3> end_turns(handles_.size());
+  for (size_t h = 0; h < handles_.size(); ++h) {
+    end[h] = handles_[h].transform;
+    end_turns[h] = *handles_[h].turn;
+  }
   std::vector<Vec3> end_offsets(forces_.size());
   for (size_t f = 0; f < forces_.size(); ++f) end_offsets[f] = forces_[f].target_offset;
-  if (!(same_transforms(path_.end, end) && path_.end_offsets == end_offsets)) path_ = {};
+  if (!(same_transforms(path_.end, end) && same_turns(path_.end_turns, end_turns) &&
+        path_.end_offsets == end_offsets))
+    path_ = {};
   // A new path from a minimum (an undo, a redo, a typed value; not a drag's frame): the
   // hierarchy's coarse factor is of the state the last targets were solved at, and the
   // first cycles after the jump would reuse it (they count as a drag's, whose factors are
@@ -595,8 +635,10 @@ bool Deformer::follow_path(const SolveOptions& options, SolveReport& report) {
     coarse_factor_of_state_ = true;
   }
   path_.end = std::move(end);
+  path_.end_turns = std::move(end_turns);
   path_.end_offsets = std::move(end_offsets);
   const std::vector<RigidTransform> from = solved_transforms_;
+  const std::vector<Vec3> from_turns = solved_turns_;
   const std::vector<Vec3> from_offsets = solved_offsets_;
   int budget = options.path.max_iterations;
   // A sub-step is no drag's frame (SolveOptions::drag_frame): it ends on a small decrease.
@@ -609,8 +651,11 @@ bool Deformer::follow_path(const SolveOptions& options, SolveReport& report) {
     if (budget <= 0) return false;  // resumed from solved_transforms_ by the next call
     const double s = double(k) / steps;
     std::vector<RigidTransform> step(handles_.size());
+    std::vector<Vec3> step_turns(handles_.size());
     for (size_t h = 0; h < handles_.size(); ++h) {
-      step[h] = interpolate(from[h], handles_[h].transform, system_.bodies[h].rest_center, s);
+      step[h] = interpolate(from[h], from_turns[h], handles_[h].transform, *handles_[h].turn,
+                            system_.bodies[h].rest_center, s);
+      step_turns[h] = (1.0 - s) * from_turns[h] + s * *handles_[h].turn;
       place_handle(int(h), step[h]);
     }
     std::vector<Vec3> step_offsets(forces_.size());
@@ -622,9 +667,11 @@ bool Deformer::follow_path(const SolveOptions& options, SolveReport& report) {
     }
     // The sub-step a call's budget ran out in is the first of the next call's, bit for bit.
     const bool resumed = path_.step_iterations > 0 && same_transforms(path_.step, step) &&
+                         same_turns(path_.step_turns, step_turns) &&
                          path_.step_offsets == step_offsets;
     if (!resumed) {
       path_.step = step;
+      path_.step_turns = step_turns;
       path_.step_offsets = step_offsets;
       path_.step_iterations = 0;
       if (options.drag_prediction > 0.0)
@@ -649,6 +696,7 @@ bool Deformer::follow_path(const SolveOptions& options, SolveReport& report) {
     }
     path_.step_iterations = 0;
     solved_transforms_ = std::move(step);
+    solved_turns_ = std::move(step_turns);
     solved_offsets_ = std::move(step_offsets);
     ++report.path_steps;
   }

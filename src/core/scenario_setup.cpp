@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "primo/error.h"
+#include "primo/turn.h"
 #include "primo/scenario.h"
 
 namespace primo {
@@ -147,6 +148,7 @@ ResolvedScenario resolve_scenario(const Scenario& scenario, const Mesh& mesh) {
                   ": transform.axis must be non-zero when angle_deg is not 0");
     const Vec3 center = t.center ? *t.center : area_weighted_centroid(geometry, handle.faces);
     handle.transform = make_rigid_transform(t.translate, t.axis, t.angle_deg, center);
+    handle.turn = turn_about(t.axis, t.angle_deg);  // kept as written: 360 is a whole turn
     resolved.handles.push_back(std::move(handle));
   }
 
