@@ -79,7 +79,7 @@ struct Handle {
   RigidTransform transform;
   // The transform's rotation with its whole turns (turn.h): rotation_of_turn(*turn) is
   // transform.rotation. Absent: the principal one, at most half a turn.
-  std::optional<Vec3> turn;
+  std::optional<Vec3> turn = std::nullopt;
 };
 
 // Zero-rest-length springs pulling each face's moved rest centroid towards centroid + offset.

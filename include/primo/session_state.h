@@ -7,10 +7,12 @@
 
 #include <Eigen/Geometry>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "primo/constraints.h"
+#include "primo/turn.h"
 
 namespace primo {
 
@@ -28,9 +30,21 @@ enum class SessionHandleMode {
 struct SessionPose {
   Vec3 translate = Vec3::Zero();
   Eigen::Quaterniond rotation = Eigen::Quaterniond::Identity();
+  // The rotation with its whole turns (primo/turn.h; rotation_of_turn(turn) is `rotation`):
+  // a handle turned 720 degrees replays as two turns.
+  Vec3 turn = Vec3::Zero();
+
+  // `turn`, or where the rotation was set without it, the rotation's own turn.
+  Vec3 whole_turn() const { return turn_of(rotation.toRotationMatrix(), turn); }
+  // `turn` where it makes the rotation; nullopt where the rotation was set without it (a file
+  // written before turns were kept): the solver then continues the turn it had.
+  std::optional<Vec3> known_turn() const {
+    return turn_makes(turn, rotation.toRotationMatrix()) ? std::optional<Vec3>(turn) : std::nullopt;
+  }
 
   bool operator==(const SessionPose& o) const {
-    return translate == o.translate && rotation.coeffs() == o.rotation.coeffs();
+    return translate == o.translate && rotation.coeffs() == o.rotation.coeffs() &&
+           whole_turn() == o.whole_turn();
   }
 };
 

@@ -39,6 +39,25 @@ Vec3 nearest_turn(const Mat3& rotation, const Vec3& near) {
   return axis * (angle + two_pi * k);
 }
 
+Vec3 turn_of(const Mat3& rotation, const Vec3& turn) {
+  return turn_makes(turn, rotation) ? turn : nearest_turn(rotation, turn);
+}
+
+AxisAngle axis_angle_of_turn(const Vec3& turn) {
+  AxisAngle a;
+  const double angle = turn.norm();
+  if (!(angle > 0.0)) return a;
+  a.axis = turn / angle;
+  a.angle_deg = angle * 180.0 / M_PI;
+  Eigen::Index largest = 0;
+  a.axis.cwiseAbs().maxCoeff(&largest);
+  if (a.axis[largest] < 0) {
+    a.axis = -a.axis;
+    a.angle_deg = -a.angle_deg;
+  }
+  return a;
+}
+
 bool turn_makes(const Vec3& turn, const Mat3& rotation) {
   return turn.allFinite() &&
          (rotation_of_turn(turn) - rotation).cwiseAbs().maxCoeff() <= 1e-6;

@@ -63,7 +63,7 @@ DeformationInputs deformation_inputs(const EditState& state) {
       Fix fix = Fix::All;
       if (g.mode == HandleMode::Position) fix = Fix::Position;
       if (g.mode == HandleMode::Orientation) fix = Fix::Orientation;
-      in.handles.push_back({g.name, *g.faces, fix, g.transform()});
+      in.handles.push_back({g.name, *g.faces, fix, g.transform(), g.pose.known_turn()});
     }
   }
   return in;
@@ -152,7 +152,7 @@ void set_handle_mode(EditState& state, int index, HandleMode mode) {
   if (index < 0 || index >= int(state.handles.size())) return;
   HandleGroup& g = state.handles[index];
   // A spring pulls by translation only; other modes keep the pose they had.
-  if (mode == HandleMode::Spring) g.pose.rotation = Eigen::Quaterniond::Identity();
+  if (mode == HandleMode::Spring) g.pose.set_turn(Vec3::Zero());
   g.mode = mode;
 }
 

@@ -274,8 +274,10 @@ SolverTargets targets_of(const EditState& s) {
   for (const HandleGroup& g : s.handles) {
     if (g.mode == HandleMode::Spring)
       targets.forces.push_back(g.pose.translate);
-    else
+    else {
       targets.handles.push_back(g.transform());
+      targets.turns.push_back(g.pose.known_turn());
+    }
   }
   return targets;
 }

@@ -201,7 +201,7 @@ void Editor::update_gesture() {
     case Gesture::DragHandle: {
       HandleGroup& g = s->handles[drag_group_];
       if (g.mode == HandleMode::Orientation) {
-        g.pose.rotation = (drag_rotation(camera_, press_, cursor_) * drag_start_pose_.rotation).normalized();
+        g.pose.turn_to((drag_rotation(camera_, press_, cursor_) * drag_start_pose_.rotation).normalized());
       } else {
         const glm::dvec3 delta = view_plane_point(camera_, drag_anchor_, cursor_) - drag_anchor_;
         g.pose.translate = drag_start_pose_.translate + Vec3(delta.x, delta.y, delta.z);
@@ -217,7 +217,7 @@ void Editor::update_gesture() {
                            gizmo_->translation(camera_, cursor_, snap,
                                                snap_step_for(doc_->topology->bbox_diagonal));
       else
-        g.pose.rotation = (gizmo_->rotation(camera_, cursor_, snap) * drag_start_pose_.rotation).normalized();
+        g.pose.turn_to((gizmo_->rotation(camera_, cursor_, snap) * drag_start_pose_.rotation).normalized());
       live_edit();
       break;
     }

@@ -87,7 +87,7 @@ void Editor::follow_mirror() {
   const Pose pose = mirrored_pose(g, twin, *mirror_map(g.mirror_axis));
   // Only what the twin's mode uses: a position-only twin keeps a rotation of identity.
   if (uses_translation(twin.mode)) twin.pose.translate = pose.translate;
-  if (uses_rotation(twin.mode)) twin.pose.rotation = pose.rotation;
+  if (uses_rotation(twin.mode)) twin.pose.set_turn(pose.whole_turn());
   if (twin.mode == HandleMode::Spring) twin.stiffness = g.stiffness;
 }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "primo/horn.h"
+#include "primo/turn.h"
 
 namespace primo::editor {
 
@@ -25,6 +26,16 @@ bool uses_rotation(HandleMode mode) {
 
 bool uses_translation(HandleMode mode) {
   return mode == HandleMode::Pose || mode == HandleMode::Position || mode == HandleMode::Spring;
+}
+
+void Pose::turn_to(const Eigen::Quaterniond& q) {
+  rotation = q;
+  turn = nearest_turn(q.toRotationMatrix(), whole_turn());
+}
+
+void Pose::set_turn(const Vec3& t) {
+  turn = t;
+  rotation = Eigen::Quaterniond(rotation_of_turn(t)).normalized();
 }
 
 RigidTransform HandleGroup::transform() const {
@@ -70,7 +81,7 @@ HandleGroup make_handle_group(std::string name, std::vector<int> faces, HandleMo
     for (int v : vertices)
       S += (topology.rest_points[v] - rest_mean) * (current[v] - cur_mean).transpose();
     const Mat3 R = horn_rotation(S);
-    g.pose.rotation = Eigen::Quaterniond(R).normalized();
+    g.pose.turn_to(Eigen::Quaterniond(R).normalized());
     // R (x - center) + center + translate = R (x - rest_mean) + cur_mean
     g.pose.translate = cur_mean - R * rest_mean + R * g.center - g.center;
   }

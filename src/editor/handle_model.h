@@ -5,11 +5,13 @@
 
 #include <Eigen/Geometry>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "mesh_topology.h"
 #include "primo/constraints.h"
+#include "primo/turn.h"
 
 namespace primo::editor {
 
@@ -30,12 +32,29 @@ bool uses_translation(HandleMode mode);  // Pose, Position, Spring
 struct Pose {
   Vec3 translate = Vec3::Zero();
   Eigen::Quaterniond rotation = Eigen::Quaterniond::Identity();
+  // The rotation with its whole turns (primo/turn.h): two turns of the gizmo's ring or 720
+  // typed stay 720 degrees, and the solver follows all of them. rotation_of_turn(turn) is
+  // `rotation`.
+  Vec3 turn = Vec3::Zero();
+
+  // `turn`, or where the rotation was set without it, the rotation's own turn.
+  Vec3 whole_turn() const { return turn_of(rotation.toRotationMatrix(), turn); }
+  // `turn` where it makes the rotation; nullopt where the rotation was set without it: the
+  // solver then continues the turn it had, as for any rotation set alone.
+  std::optional<Vec3> known_turn() const {
+    return turn_makes(turn, rotation.toRotationMatrix()) ? std::optional<Vec3>(turn) : std::nullopt;
+  }
+  // Sets the rotation; its turn continues the one before (a drag's frames add up).
+  void turn_to(const Eigen::Quaterniond& q);
+  // Sets the turn and the rotation it makes.
+  void set_turn(const Vec3& t);
 
   bool is_identity() const {
-    return translate == Vec3::Zero() && rotation.coeffs() == Eigen::Quaterniond::Identity().coeffs();
+    return translate == Vec3::Zero() && whole_turn() == Vec3::Zero();
   }
   bool operator==(const Pose& o) const {
-    return translate == o.translate && rotation.coeffs() == o.rotation.coeffs();
+    return translate == o.translate && rotation.coeffs() == o.rotation.coeffs() &&
+           whole_turn() == o.whole_turn();
   }
 };
 

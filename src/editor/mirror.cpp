@@ -404,7 +404,9 @@ Pose mirrored_pose(const HandleGroup& source, const HandleGroup& twin, const Mir
   const Mat3 R = S * t.rotation * S;
   const Vec3 b = S * t.rotation * d + S * t.translation + d;
   Pose pose;
+  // A reflection turns a rotation vector into -S times it: the twin turns as far, the other way.
   pose.rotation = Eigen::Quaterniond(R).normalized();
+  pose.turn = -(S * source.pose.whole_turn());
   pose.translate = b - twin.center + R * twin.center;
   return pose;
 }

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "model_orientation.h"
+#include "primo/turn.h"
 #include "paint.h"
 
 namespace primo::editor {
@@ -83,11 +84,12 @@ Scenario export_scenario(const EditState& state, const std::string& mesh_path,
     h.fix = g.mode == HandleMode::Position      ? Fix::Position
             : g.mode == HandleMode::Orientation ? Fix::Orientation
                                                 : Fix::All;
-    const Eigen::AngleAxisd aa(g.pose.rotation.normalized());
     h.transform.translate = g.pose.translate;
-    if (aa.angle() != 0.0) {
-      h.transform.axis = aa.axis();
-      h.transform.angle_deg = aa.angle() * 180.0 / M_PI;
+    // The turn, whole turns included: angle_deg is kept as written (720 is two turns).
+    if (const Vec3 turn = g.pose.whole_turn(); turn != Vec3::Zero()) {
+      const AxisAngle a = axis_angle_of_turn(turn);
+      h.transform.axis = a.axis;
+      h.transform.angle_deg = a.angle_deg;
     }
     h.transform.center = g.center;
     if (g.mode == HandleMode::Fixed) {
@@ -139,9 +141,7 @@ EditState import_scenario(const Scenario& scenario, const ResolvedScenario& reso
     HandleGroup g;
     g.faces = std::make_shared<const std::vector<int>>(h.faces);
     g.center = area_weighted_centroid(topology.rest_geometry, h.faces);
-    if (t.angle_deg != 0.0)
-      g.pose.rotation = Eigen::Quaterniond(
-          Eigen::AngleAxisd(t.angle_deg * M_PI / 180.0, t.axis.normalized()));
+    g.pose.set_turn(turn_about(t.axis, t.angle_deg));
     // The file's centre may differ from ours: x' = R (x - c_s) + c_s + t
     //                                           = R (x - c) + c + t + (I - R)(c_s - c).
     const Vec3 c_s = t.center ? *t.center : g.center;

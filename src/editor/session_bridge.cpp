@@ -33,6 +33,7 @@ SessionHandle session_handle(const HandleGroup& g) {
   h.center = g.center;
   h.pose.translate = g.pose.translate;
   h.pose.rotation = g.pose.rotation;
+  h.pose.turn = g.pose.turn;
   h.color = g.color;
   return h;
 }
@@ -46,6 +47,7 @@ HandleGroup handle_group(const SessionHandle& h) {
   g.center = h.center;
   g.pose.translate = h.pose.translate;
   g.pose.rotation = h.pose.rotation;
+  g.pose.turn = h.pose.turn;
   g.color = h.color;
   return g;
 }

@@ -296,7 +296,8 @@ void SolverWorker::apply(const SolverTargets& targets) {
       targets.forces.size() != deformer_->forces().size())
     return;  // stale: made for a different set of handles
   for (size_t h = 0; h < targets.handles.size(); ++h)
-    deformer_->set_handle_transform(int(h), targets.handles[h]);
+    deformer_->set_handle_transform(int(h), targets.handles[h],
+                                    h < targets.turns.size() ? targets.turns[h] : std::nullopt);
   for (size_t f = 0; f < targets.forces.size(); ++f)
     if (targets.forces[f] != deformer_->forces()[f].target_offset)
       deformer_->set_force_offset(int(f), targets.forces[f]);

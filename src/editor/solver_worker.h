@@ -11,6 +11,7 @@
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
+#include <optional>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -45,6 +46,9 @@ struct SolverProblem {
 struct SolverTargets {
   std::vector<RigidTransform> handles;  // one per engine handle
   std::vector<Vec3> forces;             // one per engine force
+  // The handles' rotations' whole turns (primo/turn.h); none or nullopt: continue the
+  // handle's turn.
+  std::vector<std::optional<Vec3>> turns = {};
 };
 
 enum class SolverPhase {

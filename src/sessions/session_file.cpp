@@ -13,6 +13,7 @@
 #include "primo/json_limits.h"
 #include "primo/output_files.h"
 #include "primo/session.h"
+#include "primo/turn.h"
 
 namespace primo {
 namespace {
@@ -119,8 +120,27 @@ SessionHandleMode parse_mode(const json& j, const std::string& path) {
 json vec_json(const Vec3& v) { return json::array({v.x(), v.y(), v.z()}); }
 json quat_json(const Eigen::Quaterniond& q) { return json::array({q.w(), q.x(), q.y(), q.z()}); }
 
+// A turn is written only where it is not the rotation's own (beyond half a turn, or turned
+// the long way): files without turns read as before, and as written.
+bool turn_is_principal(const SessionPose& p) {
+  return p.whole_turn() == nearest_turn(p.rotation.toRotationMatrix());
+}
+
 json pose_json(const SessionPose& p) {
-  return {{"translate", vec_json(p.translate)}, {"rotation", quat_json(p.rotation)}};
+  json j = {{"translate", vec_json(p.translate)}, {"rotation", quat_json(p.rotation)}};
+  if (!turn_is_principal(p)) j["turn"] = vec_json(p.whole_turn());
+  return j;
+}
+
+// The pose's turn from j["turn"], which must make its rotation. Without one the turn is not
+// known (SessionPose::known_turn): a replay continues the turn the handle had, as the
+// recording did.
+void parse_turn(const json& j, const std::string& path, SessionPose& pose) {
+  if (!j.contains("turn")) return;
+  pose.turn = vec3(j["turn"], at(path, "turn"));
+  if (!turn_makes(pose.turn, pose.rotation.toRotationMatrix()))
+    fail(at(path, "turn"), "is not a turn of the rotation beside it (a rotation vector, axis "
+                           "times angle in radians, whose rotation is that quaternion)");
 }
 
 json handle_json(const SessionHandle& g) {
@@ -128,12 +148,14 @@ json handle_json(const SessionHandle& g) {
             {"stiffness", g.stiffness}, {"center", vec_json(g.center)}, {"color", g.color}};
   j["translate"] = vec_json(g.pose.translate);
   j["rotation"] = quat_json(g.pose.rotation);
+  if (!turn_is_principal(g.pose)) j["turn"] = vec_json(g.pose.whole_turn());
   return j;
 }
 
 SessionHandle parse_handle(const json& j, const std::string& path) {
   check_object(j, path,
-               {"name", "mode", "faces", "stiffness", "center", "color", "translate", "rotation"});
+               {"name", "mode", "faces", "stiffness", "center", "color", "translate", "rotation",
+                "turn"});
   SessionHandle g;
   const json& name = member(j, path, "name");
   if (!name.is_string()) fail(at(path, "name"), "expected a string");
@@ -149,6 +171,7 @@ SessionHandle parse_handle(const json& j, const std::string& path) {
   if (j.contains("color")) g.color = integer(j["color"], at(path, "color"));
   if (j.contains("translate")) g.pose.translate = vec3(j["translate"], at(path, "translate"));
   if (j.contains("rotation")) g.pose.rotation = quaternion(j["rotation"], at(path, "rotation"));
+  parse_turn(j, path, g.pose);
   return g;
 }
 
@@ -281,11 +304,12 @@ SessionEvent parse_event(const json& j, SessionEvent::Type type) {
       if (!ps.is_array()) fail("poses", "expected an array");
       for (size_t i = 0; i < ps.size(); ++i) {
         const std::string p = "poses[" + std::to_string(i) + "]";
-        check_object(ps[i], p, {"handle", "translate", "rotation"});
+        check_object(ps[i], p, {"handle", "translate", "rotation", "turn"});
         SessionTarget sp;
         sp.handle = integer(member(ps[i], p, "handle"), at(p, "handle"));
         sp.pose.translate = vec3(member(ps[i], p, "translate"), at(p, "translate"));
         sp.pose.rotation = quaternion(member(ps[i], p, "rotation"), at(p, "rotation"));
+        parse_turn(ps[i], p, sp.pose);
         e.poses.push_back(sp);
       }
       break;

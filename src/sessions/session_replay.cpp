@@ -22,7 +22,7 @@ std::unique_ptr<Deformer> build(const Mesh& mesh, const SessionState& state,
 void set_targets(Deformer& d, const SessionState& state) {
   const SessionSolverInputs in = solver_inputs(state);
   for (size_t h = 0; h < in.handles.size(); ++h)
-    d.set_handle_transform(int(h), in.handles[h].transform);
+    d.set_handle_transform(int(h), in.handles[h].transform, in.handles[h].turn);
   for (size_t f = 0; f < in.forces.size(); ++f)
     if (in.forces[f].target_offset != d.forces()[f].target_offset)
       d.set_force_offset(int(f), in.forces[f].target_offset);

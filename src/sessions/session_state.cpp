@@ -60,7 +60,7 @@ SessionSolverInputs solver_inputs(const SessionState& state) {
     Fix fix = Fix::All;
     if (h.mode == SessionHandleMode::Position) fix = Fix::Position;
     if (h.mode == SessionHandleMode::Orientation) fix = Fix::Orientation;
-    in.handles.push_back({h.name, *h.faces, fix, h.transform()});
+    in.handles.push_back({h.name, *h.faces, fix, h.transform(), h.pose.known_turn()});
   }
   return in;
 }

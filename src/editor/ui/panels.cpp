@@ -19,6 +19,7 @@
 #include "preferences_window.h"
 #include "session_panel.h"
 #include "widgets.h"
+#include "primo/turn.h"
 
 namespace primo::editor {
 namespace fs = std::filesystem;
@@ -28,10 +29,9 @@ ImU32 u32(float r, float g, float b, float a = 1.0f) {
   return ImGui::ColorConvertFloat4ToU32(ImVec4(r, g, b, a));
 }
 
-// The active handle's rotation as its Axis and Angle fields hold it while one of them is
-// being edited. Read back from the rotation at every frame they would come back changed: an
-// axis typed as (1, 1, 0) normalised, 270 degrees as 90 about the opposite axis, the
-// quaternion's sign flipped. A field in text mode applies its text at every frame, so the
+// The active handle's turn as its Axis and Angle fields hold it while one of them is being
+// edited. Read back from the turn at every frame they would come back changed (an axis typed
+// as (1, 1, 0) normalised). A field in text mode applies its text at every frame, so the
 // handle would be posed anew at every frame and the solver would start over at iteration 0 for
 // as long as the field stays open (and a drag past 180 degrees would bounce back).
 struct RotationFields {
@@ -340,9 +340,10 @@ void handles_section(Editor& e) {
       RotationFields& fields = rotation_fields;
       if (fields.editing == 0 || fields.editing != ImGui::GetActiveID() ||
           fields.handle_faces != h.faces.get()) {
-        const Eigen::AngleAxisd aa(h.pose.rotation);
-        fields.angle_deg = aa.angle() * 180.0 / M_PI;
-        fields.axis = aa.angle() != 0.0 ? aa.axis() : Vec3::UnitY();
+        // Whole turns included: two turns of the gizmo's ring read 720 degrees.
+        const AxisAngle shown = axis_angle_of_turn(h.pose.whole_turn());
+        fields.angle_deg = shown.angle_deg;
+        fields.axis = shown.axis;
       }
       ImGui::SetNextItemWidth(-60);
       bool changed = ImGui::DragScalarN("Axis", ImGuiDataType_Double, fields.axis.data(), 3, 0.01f,
@@ -350,17 +351,17 @@ void handles_section(Editor& e) {
       fields.editing = ImGui::IsItemActive() ? ImGui::GetActiveID() : 0;
       const bool axis_done = ImGui::IsItemDeactivatedAfterEdit();
       ImGui::SetNextItemWidth(-60);
-      const double amin = -360, amax = 360;
+      // Turns add up: no clamp to one turn, only a bound far beyond any pose (100 turns).
+      const double amin = -36000, amax = 36000;
       changed |= ImGui::DragScalar("Angle", ImGuiDataType_Double, &fields.angle_deg, 0.5f, &amin,
-                                   &amax, "%.2f deg");
+                                   &amax, "%.2f deg", ImGuiSliderFlags_AlwaysClamp);
       if (ImGui::IsItemActive()) fields.editing = ImGui::GetActiveID();
       fields.handle_faces = h.faces.get();
       const bool angle_done = ImGui::IsItemDeactivatedAfterEdit();
       if (changed && fields.axis.norm() > 1e-12) {
-        const Eigen::Quaterniond rotation(
-            Eigen::AngleAxisd(fields.angle_deg * M_PI / 180.0, fields.axis.normalized()));
-        if (rotation.coeffs() != h.pose.rotation.coeffs()) {
-          h.pose.rotation = rotation;
+        const Vec3 turn = turn_about(fields.axis, fields.angle_deg);
+        if (turn != h.pose.whole_turn()) {
+          h.pose.set_turn(turn);
           e.live_edit();
         }
       }
