@@ -181,7 +181,7 @@ TEST(BenchCli, DragBenchScenarioMatchesBoundingBoxHandles) {
   EXPECT_EQ(ja["profile"]["drag_foreground_factorizations"].get<int>(), 0);
 }
 
-// Issue 15's case: the 238,656-face bunny (bunny_hr.obj Loop-subdivided once), its base fixed,
+// The ears pull (bunny-ears.json): the 238,656-face bunny (bunny_hr.obj Loop-subdivided once), its base fixed,
 // its ears turned 35 degrees about z and moved. Its boxes select by face centroid, so they fit
 // the subdivided mesh too; here on the shared mesh itself, when it is there.
 TEST(BenchCli, DragIssueCaseSelectsTheBunnysBaseAndEars) {

@@ -55,6 +55,13 @@ TEST(CliOptions, HelpIsStillPrintedWithExitZero) {
   EXPECT_TRUE(r.err.empty()) << r.err;
 }
 
+TEST(CliOptions, VersionIsTheProjectVersion) {
+  const CommandResult r = run_primo("--version");
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_EQ(r.out, std::string("primo ") + PRIMO_PROJECT_VERSION + "\n");
+  EXPECT_TRUE(r.err.empty()) << r.err;
+}
+
 TEST(CliOptions, NumbersMustBeFiniteAndInRange) {
   // CLI11's Range and PositiveNumber let NaN through, and PositiveNumber infinity.
   expect_one_line("replay s.json -o o.obj --every nan",

@@ -1,4 +1,4 @@
-// Faults around the commands' output (issue 16, docs/reliability.md): a missing, read-only or
+// Faults around the commands' output (docs/reliability.md): a missing, read-only or
 // special output, an output that is also an input, a full disk, SIGKILL in the middle of a
 // large write and of a `replay --frames` export, two processes writing the same file. In every
 // case the user's existing files stay as they were, and no partial file is left under a final

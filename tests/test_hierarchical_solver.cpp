@@ -762,7 +762,7 @@ TEST(HierarchicalSolver, ADragOfAThinBladeStaysNearItsMinimum) {
   // turned 30 degrees in the blade's plane and moved along the blade: `bench drag
   // --bbox-handles` on it. A drag's frame has one coarse step; when its reused coarse factor's
   // step was cut by halving, the drag predictor repeated the cut frames' changes and the blade
-  // was 35 to 65 times above its minimum at frames 20 to 40 (docs/performance.md, part 21);
+  // was 35 to 65 times above its minimum at frames 20 to 40 (docs/decisions/0002);
   // now 1.3 times at most.
   const std::string path = test::shared_path("meshes/sword-quad-dominant.obj");
   if (!test::exists(path)) GTEST_SKIP() << "skipped: " << path << " is not present";

@@ -1,4 +1,4 @@
-// Hostile scenarios, sessions, scripts and numbers (issue 16): what the fuzzing pass crashed,
+// Hostile scenarios, sessions, scripts and numbers: what the fuzzing pass crashed,
 // hung or silently got wrong outside the mesh readers (tests/test_hostile_meshes.cpp). Each is
 // one clear error naming the file, or the right result.
 

@@ -1,4 +1,4 @@
-// Hostile mesh files (issue 16): the inputs a sanitizer-built fuzzing pass crashed, hung or
+// Hostile mesh files: the inputs a sanitizer-built fuzzing pass crashed, hung or
 // misread OpenMesh's readers with, now read by PriMo's own (src/core/mesh_readers.cpp). Each
 // must give one clear Error naming the file, or the right mesh; none may crash, hang or load
 // short. fuzz/ holds the fuzz targets that found them; docs/reliability.md lists them.

@@ -603,7 +603,7 @@ TEST(NewtonKrylov, ASolveFromAfarStepsOnceOneCycleAtFixedTargetsHasShownItFar) {
   // The first cycle after the targets move is a drag's frame; the next one, the first at fixed
   // targets, tells a solve from afar (it lowers the energy by 0.1-0.6 of it on the bench's
   // meshes) from the settle of a drag that followed the hand (1e-5 to 1e-4). The third
-  // iteration is a step then, not a third cycle (docs/performance.md, part 15).
+  // iteration is a step then, not a third cycle (docs/decisions/0005).
   const test::BentCylinder c = test::bent_cylinder(40, 60, 90.0, 30.0);
   auto steps_in = [&](int iterations) {
     Deformer d(c.mesh, PrismParameters{}, c.handles);

@@ -1,4 +1,4 @@
-// Reliability (issue 16, docs/reliability.md): thousands of random handle moves, huge and
+// Reliability (docs/reliability.md): thousands of random handle moves, huge and
 // degenerate ones included, never give a non-finite state or an energy that rises within a
 // solve; the degenerate geometry the paper says PriMo survives either solves or is one error
 // naming the face; the same inputs give the same bytes run after run.

@@ -53,8 +53,8 @@ struct HierarchicalOptions {
   // changes there: at 240k faces the settle after the drag benchmark's drag spent 0.34-0.53 s
   // of its 2.6-3.2 s on refactorizations with 16, and none with 48, in the same 24 cycles;
   // the armadillo's took 19 cycles instead of 14 but less time, the koala's 35 instead of 34
-  // (docs/performance.md, "Ninth session"). Far from the minimum fresh factors pay: a full
-  // solve by cycles took 116 cycles instead of 80 with 48.
+  // (docs/decisions/0002-reused-coarse-factors.md). Far from the minimum fresh factors pay:
+  // a full solve by cycles took 116 cycles instead of 80 with 48.
   int settle_factor_reuse = 48;
   // During a drag (targets changed within the last 2 cycles) a spent factor is refreshed on a
   // background thread and takes over `drag_factor_lag` coarse steps later
@@ -80,11 +80,12 @@ struct HierarchicalOptions {
   // than this fraction, iterations are Newton-Krylov steps on the fine level instead of
   // cycles (newton_krylov.h): the cycles' tail converges linearly, Newton's steps faster. A
   // step that fails to lower the energy hands back to cycles until the targets move. 0:
-  // cycles only. On by default since the steps got cheaper (docs/performance.md, "Eleventh
-  // session"): the drag benchmark's settles took 1.5-1.7 instead of 2.1-2.9 s at 240k faces,
-  // 1.5-1.7 instead of 2.7-2.9 s on the 100k koala, 0.32-0.33 instead of 0.35-0.52 s on the
-  // armadillo, 0.072-0.077 instead of 0.047-0.052 s on the elephant, and 30 instead of 56 s
-  // on the koala subdivided to 400k faces (whose cycles stop 0.18% above the minimum).
+  // cycles only. On by default since the steps got cheaper
+  // (docs/decisions/0005-newton-krylov-steps-for-the-tail.md): the drag benchmark's settles
+  // took 1.5-1.7 instead of 2.1-2.9 s at 240k faces, 1.5-1.7 instead of 2.7-2.9 s on the
+  // 100k koala, 0.32-0.33 instead of 0.35-0.52 s on the armadillo, 0.072-0.077 instead of
+  // 0.047-0.052 s on the elephant, and 30 instead of 56 s on the koala subdivided to 400k
+  // faces (whose cycles stop 0.18% above the minimum).
   double newton_krylov_below = 1e-3;
   // When the first cycle at fixed targets (the second since they moved: the first is a drag's
   // frame) lowered the energy by more than this fraction, the state is far from the minimum (a
@@ -99,7 +100,7 @@ struct HierarchicalOptions {
   // lagged the hand (15-30 frames, or an artist's fast 4-second pull at 240k faces) by 2e-3
   // to 1e-2, and there the steps win too: with 1e-2 such a settle at 240k faces took 13
   // cycles before its first step and 24 iterations (2.7 s), with 2e-3 it takes 10 (1.8 s)
-  // (docs/performance.md, part 18). 0: cycles there too. A step takes 0.1-0.3 s at 240k
+  // (docs/decisions/0005). 0: cycles there too. A step takes 0.1-0.3 s at 240k
   // faces: the editor interrupts it when a newer request comes (SolveOptions::interrupt).
   double newton_krylov_above = 2e-3;
   // A drag's frame (SolveOptions::drag_frame) that its caller gives two or more iterations
@@ -107,8 +108,8 @@ struct HierarchicalOptions {
   // instead of a cycle. One cycle a frame lags the minimum along soft modes, which the step
   // takes as the cycles cannot: the drag benchmark's last frames ended 0.000-0.016% of the
   // diagonal from their minima (elephant, armadillo, beetle, skull, koala) instead of
-  // 0.011-5.1%, for 2.5-4 times a cycle's time; two cycles were no closer (docs/performance.md,
-  // part 23).
+  // 0.011-5.1%, for 2.5-4 times a cycle's time; two cycles were no closer
+  // (docs/decisions/0008-newton-krylov-step-in-drag-frames.md).
   bool newton_krylov_in_frames = true;
   NewtonKrylovOptions newton_krylov;
   // A drag's preview (HierarchicalSolver::begin_preview) runs on the finest coarse level with

@@ -32,7 +32,7 @@ struct NewtonKrylovOptions {
   // the error in the energy norm), or after `max_cg_iterations`. A test on the preconditioned
   // residual r.z, as before, applied the preconditioner once more per step only to decide
   // to stop: 47 applications for 39 iterations in the 240k full solve, 34 for 34 with this
-  // test at 0.1, the same steps (docs/performance.md, tenth session).
+  // test at 0.1, the same steps (docs/decisions/0005-newton-krylov-steps-for-the-tail.md).
   double stop_ratio = 0.1;
   int max_cg_iterations = 40;
   // The largest turn (radians) a body may make in one step: conjugate gradients stop where
@@ -41,7 +41,7 @@ struct NewtonKrylovOptions {
   // minimum the exact Hessian can be nearly singular in a direction that the first iterations
   // have not reached yet; the later ones then turn whole regions by radians (6 to 30 on the
   // koala's full solve), and halving such a step leaves little of the good part of it. The
-  // bound keeps the early iterations' step instead (docs/performance.md).
+  // bound keeps the early iterations' step instead (docs/decisions/0006).
   double max_turn = 0.3;
   int max_halvings = 12;
 };

@@ -56,6 +56,7 @@ int main(int argc, char** argv) {
   CLI::App app{"PriMo: coupled prisms for intuitive surface modeling"};
   app.require_subcommand(0, 1);
   app.failure_message(one_line_failure);  // before the commands, which copy it
+  app.set_version_flag("--version", "primo " PRIMO_VERSION, "Print the version and exit");
   // One option for every command (deform, replay, bench, edit...): given after the command's
   // name too, since the commands fall through to it.
   int threads = 0;

@@ -3,7 +3,7 @@
 //                      [--mesh-dir DIR] [--peer-max-iterations N] [--half-thickness H]
 //                      [--scenario-material]`
 //
-// How smooth and how faithful large one-step edits are (issue 12, docs/quality.md): every case
+// How smooth and how faithful large one-step edits are (docs/quality.md): every case
 // is a scenario, solved by PriMo exactly as `primo deform` solves it, and by CGAL's ARAP and
 // SR-ARAP (Surface_mesh_deformation) on the same handles in the same run. Each result is
 // measured against the rest mesh (quality/mesh_quality.h). Without scenario arguments the

@@ -37,7 +37,7 @@ constexpr double kNearMinimumDecrease = 1e-2;
 // about 100 ms: with a lag of 2 steps (one cycle) the frame that needed the factor waited for
 // it (frames of 210-370 ms every sixth to tenth frame), with 4 the slowest frames were 180-200
 // ms, at the same distance to the minimum at the last frame (0.153% of the diagonal against
-// 0.150%; docs/performance.md, "Twelfth session").
+// 0.150%; docs/decisions/0002-reused-coarse-factors.md).
 constexpr double kFlopsPerFineBodyCycle = 1500.0;
 constexpr int kMinAutoLag = 2, kMaxAutoLag = 16;
 double seconds_since(Clock::time_point t) {
@@ -431,7 +431,7 @@ void HierarchicalSolver::solve_level(int l) {
     // A drag's frame (a solve of one cycle or two) has no later step to make up for a cut one:
     // a reused factor whose full step overshoots is replaced by a fresh one rather than
     // halved. Cut steps left a thin blade's drag up to 470 times above its minimum, growing
-    // from frame to frame as the drag predictor repeated them (docs/performance.md, part 21).
+    // from frame to frame as the drag predictor repeated them (docs/decisions/0002).
     // Longer solves keep the halvings: there they cost less than factorizing (a full solve
     // from rest at 240k faces took 14 iterations instead of 13 without them).
     const bool drag_frame = in_drag && iterations_ahead_ <= kMovingCycles;

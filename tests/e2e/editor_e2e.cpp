@@ -292,7 +292,7 @@ quit
 }
 
 TEST(EditorE2E, OpeningFilesBackToBackWhileTheSolverIsBusy) {
-  // The crash of issue 13: a file opened while the solver worker still published results of
+  // A crash once seen: a file opened while the solver worker still published results of
   // the previous document (a twisted tube here) made the editor draw and measure the new mesh
   // with the old one's positions. Three rounds of: tube (busy), a plain mesh, the bar scenario
   // at once; then a drag on the bar must still give what `primo deform` gives.
