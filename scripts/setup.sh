@@ -22,6 +22,9 @@ packages=(
   python3-dev pybind11-dev python3-numpy python3-pytest python3-hypothesis
   # fuzzing (scripts/fuzz.sh): clang with libFuzzer and the sanitizer runtimes
   clang libclang-rt-14-dev
+  # packaging (docs/packaging.md): the man page is `primo --help` through help2man
+  # (cpack's dpkg-shlibdeps comes with build-essential's dpkg-dev)
+  help2man
 )
 
 missing=()

@@ -1,8 +1,9 @@
 #include "inputs.h"
 
-#include <cstdlib>
 #include <filesystem>
 #include <vector>
+
+#include "data_dir.h"
 
 namespace fs = std::filesystem;
 
@@ -32,9 +33,6 @@ std::string locate_mesh(const std::string& mesh) {
   return find_shared_mesh(mesh);
 }
 
-std::string asset_dir() {
-  const char* value = std::getenv("PRIMO_ASSET_DIR");
-  return value && *value ? std::string(value) : std::string(PRIMO_SOURCE_ASSET_DIR);
-}
+std::string asset_dir() { return data_dir("PRIMO_ASSET_DIR", "assets"); }
 
 }  // namespace primo::bench

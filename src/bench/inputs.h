@@ -14,8 +14,8 @@ std::string find_shared_mesh(const std::string& name);
 // "" if neither.
 std::string locate_mesh(const std::string& mesh);
 
-// The repository's assets/ folder (compiled in; PRIMO_ASSET_DIR overrides it, as for the
-// editor): `primo bench quality` runs the scenarios of assets/scenarios/quality by default.
+// The assets folder the editor uses too (data_dir.h: installed or the repository's;
+// PRIMO_ASSET_DIR overrides it): `primo bench quality` runs the scenarios of assets/scenarios/quality by default.
 std::string asset_dir();
 
 }  // namespace primo::bench

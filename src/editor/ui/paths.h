@@ -1,6 +1,7 @@
 #pragma once
-// Where the editor finds its run-time files: the GLSL sources and the bundled assets. The
-// source-tree folders are compiled in; PRIMO_SHADER_DIR and PRIMO_ASSET_DIR override them.
+// Where the editor finds its run-time files: the GLSL sources and the bundled assets, beside an
+// installed primo or in the source tree (data_dir.h); PRIMO_SHADER_DIR and PRIMO_ASSET_DIR
+// override them.
 
 #include <string>
 
