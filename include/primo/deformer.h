@@ -89,7 +89,7 @@ struct SolveOptions {
   // A solve that follows a target move like the one before it (a drag's frame) starts from
   // the state moved on by this fraction of its change over the last frame, where that lowers
   // the energy (DragPredictor; 0: from the state as it is). Not across a jump followed in
-  // sub-steps (PathOptions). Measured in docs/performance.md.
+  // sub-steps (PathOptions). Measured in docs/decisions/0004-drag-prediction.md.
   double drag_prediction = 1.0;
   // The solve is a drag's frame: its targets moved with the hand since the last solve (the
   // editor's batches while a handle is dragged, the drag benchmark's frames). Hierarchical:
