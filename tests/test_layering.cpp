@@ -22,6 +22,7 @@ namespace fs = std::filesystem;
 const std::vector<std::pair<std::string, std::string>> kFolders = {
     {"include/primo", "core"},  // primo/session*.h belong to "sessions", see layer_of_header
     {"src/core", "core"},
+    {"src/datadir", "datadir"},  // where an installed primo finds its shaders and assets
     {"src/sessions", "sessions"},
     {"src/quality", "quality"},
     {"src/bench", "bench"},
@@ -33,11 +34,12 @@ const std::vector<std::pair<std::string, std::string>> kFolders = {
 // Who may include whom (besides itself).
 const std::map<std::string, std::set<std::string>> kAllowed = {
     {"core", {"core"}},
+    {"datadir", {"datadir"}},
     {"sessions", {"core", "sessions"}},
     {"quality", {"core", "quality"}},
-    {"bench", {"core", "sessions", "quality", "bench"}},
+    {"bench", {"core", "sessions", "quality", "datadir", "bench"}},
     {"editor", {"core", "sessions", "editor"}},
-    {"window", {"core", "sessions", "editor", "window"}},
+    {"window", {"core", "sessions", "editor", "datadir", "window"}},
     {"app", {"core", "sessions", "quality", "bench", "app"}},
 };
 
