@@ -37,13 +37,9 @@ void check_transform(const Handle& h, size_t index, const RigidTransform& t) {
     throw Error(handle_label(h, index) + ": the transform's rotation is not a rotation");
 }
 
-// A handle's turn makes its rotation; absent, the principal one is taken.
-void check_turn(Handle& h, size_t index) {
-  if (!h.turn) {
-    h.turn = nearest_turn(h.transform.rotation);
-    return;
-  }
-  if (!turn_makes(*h.turn, h.transform.rotation))
+// `turn` makes `rotation`, the one `h` is being given.
+void check_turn(const Handle& h, size_t index, const Vec3& turn, const Mat3& rotation) {
+  if (!turn_makes(turn, rotation))
     throw Error(handle_label(h, index) + ": the turn does not make the transform's rotation");
 }
 
@@ -52,14 +48,6 @@ bool same_transforms(const std::vector<RigidTransform>& a, const std::vector<Rig
   if (a.size() != b.size()) return false;
   for (size_t i = 0; i < a.size(); ++i)
     if (a[i].rotation != b[i].rotation || a[i].translation != b[i].translation) return false;
-  return true;
-}
-
-// Each handle's turn equals as well: the same rotation may be another number of turns.
-bool same_turns(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
-  if (a.size() != b.size()) return false;
-  for (size_t i = 0; i < a.size(); ++i)
-    if (a[i] != b[i]) return false;
   return true;
 }
 
@@ -134,7 +122,11 @@ Deformer::Deformer(const Mesh& mesh, const PrismParameters& params, std::vector<
       face_body[size_t(solver_face[size_t(f)])] = int(h);
     }
     check_transform(handles_[h], h, handles_[h].transform);
-    check_turn(handles_[h], h);
+    // Absent, the principal turn (at most half a turn).
+    if (!handles_[h].turn)
+      handles_[h].turn = nearest_turn(handles_[h].transform.rotation);
+    else
+      check_turn(handles_[h], h, *handles_[h].turn, handles_[h].transform.rotation);
     kinds.push_back(body_kind(handles_[h].fix));
   }
   for (int f = 0; f < n_faces; ++f) {
@@ -287,12 +279,9 @@ void Deformer::set_handle_transform(int handle, const RigidTransform& transform,
   if (handle < 0 || handle >= int(handles_.size())) throw Error("no such handle");
   Handle& h = handles_[size_t(handle)];
   check_transform(h, size_t(handle), transform);
-  Handle moved = h;
-  moved.transform = transform;
-  moved.turn = turn ? turn : nearest_turn(transform.rotation, *h.turn);
-  check_turn(moved, size_t(handle));
+  if (turn) check_turn(h, size_t(handle), *turn, transform.rotation);
+  h.turn = turn ? *turn : nearest_turn(transform.rotation, *h.turn);
   h.transform = transform;
-  h.turn = moved.turn;
   place_handle(handle, transform);
 }
 
@@ -620,7 +609,7 @@ bool Deformer::follow_path(const SolveOptions& options, SolveReport& report) {
   }
   std::vector<Vec3> end_offsets(forces_.size());
   for (size_t f = 0; f < forces_.size(); ++f) end_offsets[f] = forces_[f].target_offset;
-  if (!(same_transforms(path_.end, end) && same_turns(path_.end_turns, end_turns) &&
+  if (!(same_transforms(path_.end, end) && path_.end_turns == end_turns &&
         path_.end_offsets == end_offsets))
     path_ = {};
   // A new path from a minimum (an undo, a redo, a typed value; not a drag's frame): the
@@ -667,7 +656,7 @@ bool Deformer::follow_path(const SolveOptions& options, SolveReport& report) {
     }
     // The sub-step a call's budget ran out in is the first of the next call's, bit for bit.
     const bool resumed = path_.step_iterations > 0 && same_transforms(path_.step, step) &&
-                         same_turns(path_.step_turns, step_turns) &&
+                         path_.step_turns == step_turns &&
                          path_.step_offsets == step_offsets;
     if (!resumed) {
       path_.step = step;
