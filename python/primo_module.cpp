@@ -21,6 +21,7 @@
 #include "primo/error.h"
 #include "primo/geometry.h"
 #include "primo/mesh_io.h"
+#include "primo/output_files.h"
 #include "primo/parallel.h"
 #include "primo/scenario.h"
 #include "primo/scenario_deformer.h"
@@ -531,6 +532,44 @@ PYBIND11_MODULE(primo, m) {
       },
       py::arg("path"), py::arg("solver") = "", py::arg("one_step") = false,
       "Solves a scenario file as primo deform does: (vertices, SolveReport).");
+  m.def(
+      "load_scenario",
+      [](const std::string& path) {
+        const Scenario scenario = load_scenario(path);
+        auto mesh = std::make_shared<Mesh>(load_mesh(scenario.mesh_path));
+        const ResolvedScenario resolved = resolve_scenario(scenario, *mesh);
+        // What the file says, every key written out, as a plain dict; and what its selections
+        // and regions come to on the mesh, so that a caller never re-implements either.
+        py::dict out;
+        out["scenario"] = py::module_::import("json").attr("loads")(scenario_to_json(scenario));
+        out["mesh_path"] = scenario.mesh_path;
+        out["mesh"] = mesh;
+        py::list handle_faces;
+        for (const Handle& h : resolved.handles) handle_faces.append(h.faces);
+        out["handle_faces"] = handle_faces;
+        const auto factors = [&](const std::vector<double>& f) {
+          return f.empty() ? std::vector<double>(size_t(mesh->n_faces()), 1.0) : f;
+        };
+        out["height_factors"] = factors(resolved.prisms.face_height_factor);
+        out["width_factors"] = factors(resolved.prisms.face_width_factor);
+        return out;
+      },
+      py::arg("path"),
+      "Reads and checks a scenario file as primo deform does: a dict with scenario (the file's "
+      "keys, all written out), mesh_path, mesh, handle_faces (each handle's faces) and "
+      "height_factors and width_factors (per face, from the regions).");
+  m.def(
+      "save_scenario",
+      [](const py::dict& scenario, const std::string& path) {
+        const std::string text = py::str(py::module_::import("json").attr("dumps")(scenario));
+        // Checked as a file with this name would be, so that what primo deform refuses is
+        // never written; the mesh is resolved against the file's folder, as when it is read.
+        const Scenario parsed = parse_scenario(text, path);
+        write_text_atomically(path, scenario_to_json(parsed));
+      },
+      py::arg("scenario"), py::arg("path"),
+      "Checks a scenario given as a dict with the reader of primo deform and writes it, "
+      "atomically; a scenario the reader refuses raises primo.Error and writes nothing.");
   m.def(
       "replay_session",
       [](const std::string& path, const std::string& mesh_path) {

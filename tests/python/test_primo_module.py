@@ -159,6 +159,37 @@ def test_a_scenario_solves_as_primo_deform_does(tmp_path):
         primo.deform_scenario(str(tmp_path / "no-such.json"))
 
 
+def test_scenarios_load_resolved_and_save_checked(tmp_path):
+    loaded = primo.load_scenario(os.path.join(ASSETS, "scenarios", "bar-bend.json"))
+    scenario, mesh = loaded["scenario"], loaded["mesh"]
+    assert scenario["format"] == "primo-scenario/1" and scenario["mesh"] == "../meshes/bar.obj"
+    assert os.path.samefile(loaded["mesh_path"], os.path.join(ASSETS, "meshes", "bar.obj"))
+    # The box selections resolved as primo deform resolves them: faces whose centroid is inside.
+    c = mesh.face_centroids()
+    for faces, handle in zip(loaded["handle_faces"], scenario["handles"]):
+        box = handle["select"]["box"]
+        inside = np.all((c >= box["min"]) & (c <= box["max"]), axis=1)
+        assert faces == np.flatnonzero(inside).tolist() and faces
+    assert loaded["height_factors"] == [1.0] * mesh.n_faces == loaded["width_factors"]
+
+    # Saved beside a copy of its mesh, it solves as the original does.
+    primo.save_mesh(mesh, str(tmp_path / "bar.obj"))
+    scenario["mesh"] = "bar.obj"
+    scenario["regions"] = [{"select": {"faces": [0, 1, 2]}, "height": 0.5}]
+    primo.save_scenario(scenario, str(tmp_path / "copy.json"))
+    again = primo.load_scenario(str(tmp_path / "copy.json"))
+    assert again["handle_faces"] == loaded["handle_faces"]
+    assert again["height_factors"][:4] == [0.5, 0.5, 0.5, 1.0]
+
+    # What the reader refuses is not written, and the message names the file and the key.
+    scenario["handels"] = []
+    with pytest.raises(primo.Error, match=r"refused\.json.*handels"):
+        primo.save_scenario(scenario, str(tmp_path / "refused.json"))
+    assert not (tmp_path / "refused.json").exists()
+    with pytest.raises(primo.Error, match="missing.json"):
+        primo.load_scenario(str(tmp_path / "missing.json"))
+
+
 def test_a_recorded_session_replays():
     session = os.path.join(ASSETS, "sessions", "spot-pose.session.json")
     result = primo.replay_session(session)
