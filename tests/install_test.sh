@@ -76,10 +76,20 @@ grep -q '^f ' bar-bent.obj || fail "bar-bent.obj has no faces"
 
 if [[ -n $python ]]; then
   step "installed Python module"
-  site=$prefix/lib/python3/dist-packages
+  # A prefix other than /usr and /usr/local gets the user-site layout (python/CMakeLists.txt).
+  site=$prefix/lib/$("$python" -c 'import sys; print("python%d.%d" % sys.version_info[:2])')/site-packages
   ls "$site"/primo*.so > /dev/null 2>&1 || fail "no Python module in $site"
   found=$(PYTHONPATH=$site "$python" -c 'import primo; print(primo.__file__)') || fail "import primo"
   case "$found" in "$site"/*) ;; *) fail "import primo found $found, not the installed module" ;; esac
+
+  # The installed add-on with the installed module, in Blender when it is there.
+  if command -v blender > /dev/null; then
+    step "installed Blender add-on"
+    "$source/tests/blender/run_blender_test.sh" "$prefix/share/primo/blender/primo_pose.zip" "$site" \
+      "$source/tests/blender/test_pose_follows_empty.py" > blender.log 2>&1 \
+      || { cat blender.log; fail "the installed add-on in Blender"; }
+    grep 'solve now' blender.log
+  fi
 fi
 
 # The .deb: cpack builds the project first (its preinstall step), which on the built tree ctest
@@ -93,9 +103,12 @@ if command -v cpack > /dev/null && command -v dpkg-deb > /dev/null; then
   for f in ./usr/bin/primo ./usr/share/primo/shaders/mesh.vert \
            ./usr/share/primo/assets/scenarios/spot-pose.json ./usr/share/applications/primo.desktop \
            ./usr/share/icons/hicolor/scalable/apps/primo.svg ./usr/share/mime/packages/primo.xml \
-           ./usr/share/man/man1/primo.1.gz ${python:+./usr/lib/python3/dist-packages/primo.}; do
+           ./usr/share/man/man1/primo.1.gz ${python:+./usr/lib/python3/dist-packages/primo.} \
+           ${python:+./usr/share/primo/blender/primo_pose.zip}; do
     grep -qF " $f" contents.txt || fail "$f is not in $(basename "$deb")"
   done
+  maintainer=$(dpkg-deb -f "$deb" Maintainer)
+  [[ $maintainer =~ ^[^\<\>]+\ \<[^@\ ]+@[^@\ ]+\>$ ]] || fail "Maintainer is not 'Name <email>': $maintainer"
   depends=$(dpkg-deb -f "$deb" Depends)
   [[ $depends == *libglfw3* && $depends == *libc6* ]] || fail "Depends lacks libc6 or libglfw3: $depends"
   echo "$(basename "$deb"): $(stat -c %s "$deb") bytes"
