@@ -20,6 +20,8 @@ packages=(
   libgtest-dev libbenchmark-dev xvfb xauth xdotool
   # the Python module and its tests
   python3-dev pybind11-dev python3-numpy python3-pytest python3-hypothesis
+  # the Blender add-on's tests: Debian's Blender (3.4, on the same python3 as the module)
+  blender
   # fuzzing (scripts/fuzz.sh): clang with libFuzzer and the sanitizer runtimes
   clang libclang-rt-14-dev
   # packaging (docs/packaging.md): the man page is `primo --help` through help2man
