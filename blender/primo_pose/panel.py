@@ -5,13 +5,9 @@ import bpy
 
 class PRIMO_UL_handles(bpy.types.UIList):
     def draw_item(self, context, layout, data, item, icon, active_data, active_property, index):
-        row = layout.row(align=True)
-        row.prop(item, "name", text="", emboss=False,
-                 icon='EMPTY_ARROWS' if item.kind == 'HANDLE' else 'PINNED')
-        if item.kind == 'HANDLE':
-            row.label(text={'ALL': "Pose", 'POSITION': "Position", 'ORIENTATION': "Orientation"}[item.fix])
-        else:
-            row.label(text="Fixed")
+        # The name only, so that it is not cut: the kind shows as the icon, the mode below.
+        layout.prop(item, "name", text="", emboss=False,
+                    icon='EMPTY_ARROWS' if item.kind == 'HANDLE' else 'PINNED')
 
 
 class PRIMO_PT_pose(bpy.types.Panel):
@@ -41,7 +37,7 @@ class PRIMO_PT_pose(bpy.types.Panel):
         add = row.operator("primo.add_handle", text="Fixed", icon='PINNED')
         add.kind = 'FIXED'
         if obj.mode != 'EDIT':
-            box.label(text="Select faces in Edit Mode to add one", icon='INFO')
+            box.label(text="Edit Mode: select faces, add", icon='INFO')
         if 0 <= settings.active_handle < len(settings.handles):
             handle = settings.handles[settings.active_handle]
             box.prop(handle, "kind")
@@ -57,18 +53,20 @@ class PRIMO_PT_pose(bpy.types.Panel):
 
         box = layout.box()
         box.label(text="Painting (Weight Paint)")
-        for layer, prop in (('STIFFNESS', "stiffness_group"), ('WIDTH', "width_group")):
-            row = box.row(align=True)
-            row.prop_search(settings, prop, obj, "vertex_groups", text="")
-            op = row.operator("primo.add_paint_group", text="Paint", icon='BRUSH_DATA')
-            op.layer = layer
+        box.prop_search(settings, "stiffness_group", obj, "vertex_groups", text="Stiffness")
+        box.prop_search(settings, "width_group", obj, "vertex_groups", text="Width")
+        row = box.row(align=True)
+        row.operator("primo.add_paint_group", text="Paint stiffness", icon='BRUSH_DATA').layer = 'STIFFNESS'
+        row.operator("primo.add_paint_group", text="Paint width", icon='BRUSH_DATA').layer = 'WIDTH'
 
         box = layout.box()
         box.label(text="Solver")
         box.prop(settings, "live")
         box.operator("primo.solve_now", icon='PLAY')
         if settings.status:
-            for line in _wrapped(settings.status, 48):
+            # About 7 pixels a character at the interface's scale.
+            characters = int(context.region.width / (7.0 * context.preferences.view.ui_scale)) - 4
+            for line in _wrapped(settings.status, max(characters, 20)):
                 box.label(text=line)
 
         row = layout.row(align=True)
