@@ -59,13 +59,10 @@ class PRIMO_OT_add_handle(bpy.types.Operator):
         handle.fix = self.fix
         handle.vertex_group = group.name
         if self.kind == 'HANDLE':
-            empty = bpy.data.objects.new("PriMo " + obj.name + " " + name, None)
-            empty.empty_display_type = 'ARROWS'
-            empty.empty_display_size = max(obj.dimensions) * 0.15 or 0.1
-            empty.matrix_world = mathutils.Matrix.Translation(obj.matrix_world @ centroid)
-            obj.users_collection[0].objects.link(empty)
-            handle.empty = empty
-            handle.rest_matrix = [x for row in empty.matrix_world for x in row]
+            pose_setup.make_handle_empty(
+                handle, "PriMo " + obj.name + " " + name,
+                pose_setup.matrix_array(mathutils.Matrix.Translation(obj.matrix_world @ centroid)),
+                max(obj.dimensions) * 0.15 or 0.1, obj.users_collection[0])
         settings.active_handle = len(settings.handles) - 1
         pose_solver.forget(obj.name_full)
         return {'FINISHED'}

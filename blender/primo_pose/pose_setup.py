@@ -133,5 +133,20 @@ def handle_matrix(obj, handle):
     return m
 
 
+def make_handle_empty(handle, name, rest_matrix, size, collection):
+    """The handle's Empty, standing at `rest_matrix` (world, 4x4 rows), which is where its
+    motion is measured from."""
+    import bpy
+    import mathutils
+    empty = bpy.data.objects.new(name, None)
+    empty.empty_display_type = 'ARROWS'
+    empty.empty_display_size = size
+    empty.matrix_world = mathutils.Matrix(np.asarray(rest_matrix).tolist())
+    collection.objects.link(empty)
+    handle.empty = empty
+    handle.rest_matrix = np.asarray(rest_matrix, dtype=np.float64).ravel().tolist()
+    return empty
+
+
 def handle_matrices(obj):
     return [handle_matrix(obj, h) for h in obj.primo.handles]

@@ -192,15 +192,11 @@ def import_scenario(primo, context, path):
                 notes.append("handle '%s': its turn of %g degrees is shown as %g (an Empty's "
                              "matrix keeps no whole turns)" % (handle.name, angle,
                                                                 rotation_axis_angle(r)[1]))
-            empty = bpy.data.objects.new("PriMo " + name + " " + handle.name, None)
-            empty.empty_display_type = 'ARROWS'
-            empty.empty_display_size = mesh.bbox_diagonal * 0.1
             rest = np.eye(4)
             rest[:3, 3] = centroid
-            handle.rest_matrix = rest.ravel().tolist()
+            empty = pose_setup.make_handle_empty(handle, "PriMo " + name + " " + handle.name, rest,
+                                                 mesh.bbox_diagonal * 0.1, context.collection)
             empty.matrix_world = mathutils.Matrix((motion @ rest).tolist())
-            context.collection.objects.link(empty)
-            handle.empty = empty
     if scenario.get("forces"):
         notes.append("%d spring(s) not imported: the add-on has handles and fixed regions only"
                      % len(scenario["forces"]))

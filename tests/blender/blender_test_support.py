@@ -46,6 +46,15 @@ def cylinder(name="Cylinder", segments=24, rings=12, radius=0.25, height=2.0):
     return obj
 
 
+def fresh_cylinder():
+    """The add-on installed, an empty scene, a cylinder, and its faces' centroids' heights."""
+    install_addon()
+    for obj in list(bpy.data.objects):
+        bpy.data.objects.remove(obj)
+    obj = cylinder()
+    return obj, face_centroids(obj)[:, 2]
+
+
 def face_centroids(obj):
     return np.array([np.mean([obj.data.vertices[v].co for v in p.vertices], axis=0) for p in obj.data.polygons])
 

@@ -15,11 +15,7 @@ import bpy  # noqa: E402
 import mathutils  # noqa: E402
 import numpy as np  # noqa: E402
 
-t.install_addon()
-for obj in list(bpy.data.objects):
-    bpy.data.objects.remove(obj)
-cyl = t.cylinder()
-z = t.face_centroids(cyl)[:, 2]
+cyl, z = t.fresh_cylinder()
 t.add_handle(cyl, z < -0.8, kind='FIXED')
 middle = t.add_handle(cyl, (z > -0.1) & (z < 0.1), fix='POSITION')
 top = t.add_handle(cyl, z > 0.8)
