@@ -134,7 +134,7 @@ TEST(SessionAnimation, AFileTooLargeIsRefusedBeforeSolvingNamingItsSizeAndEvery)
                                       "/fine.obj -o " + dir + "/out.obj --animation " + dir + "/long.glb");
   EXPECT_EQ(run.exit_code, 1);
   EXPECT_NE(run.err.find("long.glb: the animation of 60001 frames of"), std::string::npos) << run.err;
-  EXPECT_NE(run.err.find("MB limit"), std::string::npos) << run.err;
+  EXPECT_NE(run.err.find("more than the 1 GiB limit"), std::string::npos) << run.err;
   EXPECT_NE(run.err.find("--every"), std::string::npos) << run.err;
   EXPECT_FALSE(fs::exists(dir + "/long.glb"));
   EXPECT_FALSE(fs::exists(dir + "/out.obj"));

@@ -59,8 +59,9 @@ SessionAnimation::SessionAnimation(const Session& session, const Mesh& mesh, int
   if (bound > kMaxAnimationFileBytes)
     throw Error(path_ + ": the animation of " + std::to_string(frames) + " frames of " +
                 std::to_string(mesh.n_vertices()) + " vertices could take up to " +
-                megabytes(bound) + ", more than the " + megabytes(kMaxAnimationFileBytes) +
-                " limit; nothing was written" + help);
+                megabytes(bound) + ", more than the " +
+                std::to_string(kMaxAnimationFileBytes >> 30) + " GiB limit; nothing was written" +
+                help);
 }
 
 void SessionAnimation::add(int frame, const Deformer& deformer) {
