@@ -4,8 +4,8 @@ Replays a short session on a bar (a drag of its top over ten frames, an idle str
 pose) with `--every 3 --frames DIR --animation anim.glb`, imports anim.glb into Blender
 headless (blender_import_check.py) and compares, at every kept frame's time (computed here from
 the session), Blender's
-evaluated mesh with DIR/frame_NNNNNN.obj. Exits 77 (ctest's skip) when `blender` is not on
-PATH.
+evaluated mesh with DIR/frame_NNNNNN.obj. Blender is $PRIMO_BLENDER, else `blender` on PATH;
+without it the script exits 77 (ctest's skip).
 
 Usage: animation_matches_replay.py PRIMO_EXECUTABLE
 """
@@ -87,7 +87,7 @@ def frame_times(events, every):
 
 def main():
     primo = os.path.abspath(sys.argv[1])
-    blender = shutil.which("blender")
+    blender = os.environ.get("PRIMO_BLENDER") or shutil.which("blender")
     if not blender:
         print("SKIP: blender is not on PATH (apt-get install blender); the animated glTF was "
               "not checked in Blender")
