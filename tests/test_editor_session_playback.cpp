@@ -1,15 +1,19 @@
 // Sessions inside the editor (no window): recording what commands and panels do to the
-// document, saving, and playback with seek and play.
+// document, saving, playback with seek and play, and exporting as an animated glTF.
 
 #include <gtest/gtest.h>
 
+#include <chrono>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <thread>
 
 #include "editor.h"
 #include "primo/mesh_generators.h"
 #include "primo/mesh_io.h"
 #include "primo/session.h"
+#include "session_support.h"
 #include "test_support.h"
 
 using namespace primo;
@@ -128,4 +132,42 @@ TEST(SessionControl, ProposesAFilePerMeshAndReadableDurations) {
   EXPECT_EQ(format_duration(8.078583), "8.1 s");
   EXPECT_EQ(format_duration(0.0), "0.0 s");
   EXPECT_EQ(format_duration(125.4), "2 min 05 s");
+}
+
+TEST(EditorSessions, ExportsTheAnimationTheReplayCommandWrites) {
+  const std::string dir = primo::test::temp_dir();
+  const primo::test::RecordedSession r = primo::test::record_bar_session(dir + "/bar.obj");
+  save_mesh(r.mesh, dir + "/bar.obj");
+  save_session(r.session, dir + "/s.session.json");
+  Editor e;
+  e.adopt(make_document(load_mesh(dir + "/bar.obj"), dir + "/bar.obj"));
+  e.update(0.016);
+  EXPECT_FALSE(e.sessions.has_session());
+  e.sessions.export_animation(e, dir + "/none.glb");
+  EXPECT_NE(e.messages().back().text.find("No session to export"), std::string::npos);
+
+  e.sessions.open_playback(e, dir + "/s.session.json");
+  ASSERT_TRUE(e.sessions.has_session());
+  e.sessions.export_animation(e, dir + "/editor.glb");
+  EXPECT_TRUE(e.sessions.exporting());
+  for (int i = 0; i < 6000 && e.sessions.exporting(); ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    e.update(0.016);
+  }
+  ASSERT_FALSE(e.sessions.exporting());
+  EXPECT_EQ(e.messages().back().text, "Exported the session animation to " + dir + "/editor.glb");
+  // The command, into a file of the same name (the node is named after the file).
+  std::filesystem::create_directories(dir + "/command");
+  const primo::test::CommandResult run = primo::test::run_primo(
+      "replay " + dir + "/s.session.json -o " + dir + "/final.obj --animation " + dir +
+      "/command/editor.glb");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const std::string exported = primo::test::read_text(dir + "/editor.glb");
+  EXPECT_GT(exported.size(), 1000u);
+  EXPECT_TRUE(exported == primo::test::read_text(dir + "/command/editor.glb"));
+
+  // A name that is no glTF: refused at once, nothing written.
+  e.sessions.export_animation(e, dir + "/anim.obj");
+  EXPECT_FALSE(e.sessions.exporting());
+  EXPECT_NE(e.messages().back().text.find("anim.obj: an animation is written as glTF"), std::string::npos);
 }

@@ -1,7 +1,8 @@
 // `primo replay SESSION.json -o OUT.ext [--frames DIR --every N --frame-format EXT]
-// [--stats STATS.json]`: replays a recorded editor session headless (docs/sessions.md) and writes
-// the final mesh, and with --frames one mesh per N frames (DIR/frame_000000.obj, ...; .glb with
-// --frame-format glb). The whole session is validated
+// [--animation OUT.glb] [--stats STATS.json]`: replays a recorded editor session headless
+// (docs/sessions.md) and writes the final mesh, with --frames one mesh per N frames
+// (DIR/frame_000000.obj, ...; .glb with --frame-format glb), and with --animation the same
+// frames as one animated glTF. The whole session is validated
 // against the mesh before anything is solved; frames go to a temporary folder inside DIR and
 // are moved into place only when the replay succeeded, so a failure writes nothing.
 
@@ -26,6 +27,7 @@
 #include "primo/mesh_io.h"
 #include "primo/output_files.h"
 #include "primo/session.h"
+#include "primo/session_animation.h"
 #include "primo/session_mapping.h"
 #include "primo/session_replay.h"
 #include "rethrow_naming.h"
@@ -40,18 +42,13 @@ struct ReplayArguments {
   std::string output;
   std::string frames;
   std::string stats;
+  std::string animation;
   std::string mesh;
   std::string frame_format = "obj";
   int every = 1;
   int iterations_per_frame = 1;
   int threads = 1;
 };
-
-std::string frame_name(int frame, const std::string& format) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "frame_%06d.", frame);
-  return buf + format;
-}
 
 // Threaded BLAS (OpenBLAS under CHOLMOD's supernodal factorization) and OpenMP sum in an
 // order that depends on the thread count, so results differ in the last bits between machines.
@@ -98,6 +95,7 @@ int run_replay(const ReplayArguments& args) {
   // Every output is checked before any work (see deform_command.cpp).
   check_mesh_output_path(args.output);
   if (!args.stats.empty()) check_output_path(args.stats);
+  if (!args.animation.empty()) check_animation_output_path(args.animation);
   if (!args.frames.empty()) {
     const fs::path frames_parent = fs::absolute(fs::path(args.frames)).parent_path();
     if (!fs::is_directory(frames_parent))
@@ -106,7 +104,10 @@ int run_replay(const ReplayArguments& args) {
     if (fs::exists(args.frames, error) && !fs::is_directory(args.frames, error))
       throw Error(args.frames + ": --frames names a file, not a folder; nothing was written");
   }
-  const std::vector<NamedFile> outputs = {{"-o", args.output}, {"--stats", args.stats}, {"--frames", args.frames}};
+  const std::vector<NamedFile> outputs = {{"-o", args.output},
+                                          {"--stats", args.stats},
+                                          {"--frames", args.frames},
+                                          {"--animation", args.animation}};
   check_distinct_files(outputs, {{"the session", args.session}, {"--mesh", args.mesh}});
   const Session session = load_session(args.session);
   check_distinct_files(outputs, {{"the session", args.session},
@@ -116,7 +117,7 @@ int run_replay(const ReplayArguments& args) {
     check_frames_spare(args.frames, args.frame_format,
                        {{"the session", args.session}, {"--mesh", args.mesh},
                         {"the session's mesh", session.mesh_path}, {"-o", args.output},
-                        {"--stats", args.stats}});
+                        {"--stats", args.stats}, {"--animation", args.animation}});
   if (!args.frames.empty() && session.frames() / args.every + 1 > kMaxFrameFiles)
     throw Error(args.session + ": --frames --every " + std::to_string(args.every) + " would write " +
                 std::to_string(session.frames() / args.every + 1) + " files (at most " +
@@ -137,6 +138,10 @@ int run_replay(const ReplayArguments& args) {
     session_on_mesh = session;
   }
   validate_session(session_on_mesh, int(mesh.n_faces()));  // before anything is written
+  // Its size is checked here, before anything is solved.
+  std::unique_ptr<SessionAnimation> animation;
+  if (!args.animation.empty())
+    animation = std::make_unique<SessionAnimation>(session_on_mesh, mesh, args.every, args.animation);
 
   // Frames are written into a hidden folder inside DIR and moved into place at the end; a
   // killed replay leaves that folder, which the next replay into DIR removes.
@@ -147,10 +152,14 @@ int run_replay(const ReplayArguments& args) {
   if (!args.frames.empty()) {
     if (fs::is_directory(args.frames)) remove_stale_partials(args.frames, ".primo-replay-");
     temp = fs::path(args.frames) / (".primo-replay-" + std::to_string(::getpid()));
+  }
+  if (!args.frames.empty() || animation) {
     options.every = args.every;
     options.on_frame = [&](int frame, const Deformer& d) {
+      if (animation) animation->add(frame, d);
+      if (args.frames.empty()) return;
       if (written.empty()) fs::create_directories(temp);
-      const std::string name = frame_name(frame, args.frame_format);
+      const std::string name = session_frame_name(frame) + "." + args.frame_format;
       save_mesh(d.deformed_mesh(mesh), (temp / name).string());
       written.push_back(name);
     };
@@ -174,9 +183,10 @@ int run_replay(const ReplayArguments& args) {
       if (fs::is_directory(fs::symlink_status(target, error)))
         throw Error(target.string() + ": a folder is where the frame goes; nothing was written");
     }
-    // The final mesh and the statistics together, or neither; then the frames.
+    // The final mesh, the animation and the statistics together, or none; then the frames.
     StagedOutputs out;
     out.stage_mesh(args.output, final_mesh);
+    if (animation) out.stage(args.animation, animation->file_bytes());
     if (!args.stats.empty())
       out.stage(args.stats, nlohmann::json{{"frames", result.frames},
                                            {"events", session.events.size()},
@@ -185,6 +195,7 @@ int run_replay(const ReplayArguments& args) {
                                            {"converged", result.converged},
                                            {"energy", result.energy},
                                            {"frames_written", written.size()},
+                                           {"animation_frames", animation ? animation->frames() : 0},
                                            {"seconds", seconds}}
                                     .dump(2) + "\n");
     out.commit();
@@ -216,7 +227,10 @@ Command register_replay(CLI::App& app) {
   cmd->add_option("--frame-format", args->frame_format,
                   "Format of the --frames meshes: obj (default), off, ply, stl, om, gltf or glb")
       ->check(CLI::IsMember({"obj", "off", "ply", "stl", "om", "gltf", "glb"}));
-  cmd->add_option("--every", args->every, "Frame step for --frames (default 1)")
+  cmd->add_option("--animation", args->animation,
+                  "Also write the frames (every --every) as one animated glTF (.glb or .gltf): the "
+                  "rest mesh with one morph target a frame, timed as recorded");
+  cmd->add_option("--every", args->every, "Frame step for --frames and --animation (default 1)")
       ->check(finite_range(1, kMaxSessionFrame));
   cmd->add_option("--iterations-per-frame", args->iterations_per_frame,
                   "Solver iterations after each frame (default 1, as the editor while dragging)")

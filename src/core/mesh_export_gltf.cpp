@@ -9,7 +9,6 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
-#include <nlohmann/json.hpp>
 #include <vector>
 
 #include "primo/error.h"
@@ -17,12 +16,8 @@
 namespace primo::detail {
 namespace {
 
-using Json = nlohmann::ordered_json;
+using Json = GltfJson;
 
-// glTF's enumerations (the specification's names).
-constexpr int kFloat = 5126;
-constexpr int kUnsignedInt = 5125;
-constexpr int kArrayBuffer = 34962;
 constexpr int kElementArrayBuffer = 34963;
 constexpr int kTriangles = 4;
 constexpr uint32_t kGlbMagic = 0x46546C67;  // "glTF"
@@ -54,11 +49,6 @@ std::string base64(const std::string& bytes) {
   return out;
 }
 
-template <typename T>
-void append_raw(std::string& out, const std::vector<T>& values) {
-  out.append(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));
-}
-
 void append_u32(std::string& out, uint32_t value) {
   char bytes[4];
   std::memcpy(bytes, &value, 4);  // glTF is little-endian, as every machine PriMo builds on
@@ -87,8 +77,9 @@ std::string face_size_runs(const Mesh& mesh) {
   return out;
 }
 
-// Area-weighted vertex normals (the Newell normal of each face, so n-gons count by their area),
-// unit length as glTF requires; a vertex without faces gets +z.
+}  // namespace
+
+// The Newell normal of each face, so that n-gons count by their area.
 std::vector<Vec3> vertex_normals(const Mesh& mesh) {
   std::vector<Vec3> normals(mesh.n_vertices(), Vec3::Zero());
   std::vector<Vec3> corners;
@@ -107,10 +98,7 @@ std::vector<Vec3> vertex_normals(const Mesh& mesh) {
   return normals;
 }
 
-}  // namespace
-
-std::string gltf_bytes(const Mesh& mesh, bool binary, const std::string& name,
-                       const std::string& path) {
+GltfDocument gltf_document(const Mesh& mesh, const std::string& name, const std::string& path) {
   if (mesh.n_faces() == 0 || mesh.n_vertices() == 0)
     throw Error(path + ": cannot save: glTF cannot hold a mesh without faces");
   if (mesh.n_vertices() > size_t(std::numeric_limits<uint32_t>::max()))
@@ -186,6 +174,12 @@ std::string gltf_bytes(const Mesh& mesh, bool binary, const std::string& name,
       {{"buffer", 0}, {"byteOffset", indices_offset}, {"byteLength", buffer.size() - indices_offset},
        {"target", kElementArrayBuffer}},
   });
+  return {std::move(json), std::move(buffer)};
+}
+
+std::string gltf_file_bytes(GltfDocument document, bool binary, const std::string& path) {
+  Json& json = document.json;
+  std::string& buffer = document.buffer;
   Json buffer_json = {{"byteLength", buffer.size()}};
   if (!binary) buffer_json["uri"] = "data:application/octet-stream;base64," + base64(buffer);
   json["buffers"] = Json::array({buffer_json});
@@ -211,6 +205,11 @@ std::string gltf_bytes(const Mesh& mesh, bool binary, const std::string& name,
   append_u32(out, kBinChunk);
   out += buffer;
   return out;
+}
+
+std::string gltf_bytes(const Mesh& mesh, bool binary, const std::string& name,
+                       const std::string& path) {
+  return gltf_file_bytes(gltf_document(mesh, name, path), binary, path);
 }
 
 }  // namespace primo::detail

@@ -3,10 +3,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <chrono>
 #include <filesystem>
+#include <memory>
 
 #include "editor.h"
 #include "primo/error.h"
+#include "primo/session_animation.h"
 #include "session_bridge.h"
 
 namespace primo::editor {
@@ -105,6 +108,27 @@ void SessionControl::close_playback(Editor& e) {
   playback_ = Session{};
 }
 
+void SessionControl::export_animation(Editor& e, const std::string& path) {
+  const Document* doc = e.document();
+  if (!doc) return e.error("Open the session's mesh first");
+  if (exporting()) return e.error("Still exporting the session animation; try again when it is done");
+  stop_recording(e);
+  if (!has_session()) return e.error("No session to export: record one or open one for playback");
+  auto session = std::make_shared<const Session>(has_playback_ ? playback_ : recorded_);
+  std::shared_ptr<const Mesh> mesh = doc->mesh;
+  try {
+    SessionAnimation(*session, *mesh, 1, path);  // refuses a file too large before solving
+  } catch (const std::exception& ex) {
+    return e.error(ex.what());
+  }
+  e.info("Exporting the session animation to " + path + " (replaying " +
+         std::to_string(session->frames()) + " frames)");
+  export_ = std::async(std::launch::async, [session, mesh, path] {
+    save_session_animation(*session, *mesh, 1, path);
+    return "Exported the session animation to " + path;
+  });
+}
+
 void SessionControl::show(Editor& e, double t) {
   Document* doc = e.document();
   if (!doc) return;
@@ -135,6 +159,13 @@ void SessionControl::show(Editor& e, double t) {
 
 void SessionControl::update(Editor& e, double seconds) {
   clock_ += seconds;
+  if (export_.valid() && export_.wait_for(std::chrono::seconds(0)) == std::future_status::ready) {
+    try {
+      e.info(export_.get());
+    } catch (const std::exception& ex) {
+      e.error(ex.what());
+    }
+  }
   if (doc_ && doc_ != e.document()) {  // another document was opened
     if (recorder_.recording()) recorded_ = recorder_.session(), recorder_ = DocumentRecorder{};
     if (has_playback_) playing_ = false, has_playback_ = false;

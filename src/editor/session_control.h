@@ -9,6 +9,7 @@
 // time with the frame clock. Each shown state goes to the solver like a live edit; pausing or
 // reaching the end records one undo step ("Session playback").
 
+#include <future>
 #include <string>
 
 #include "document_recorder.h"
@@ -51,6 +52,15 @@ class SessionControl {
   double duration() const { return playback_.duration(); }
   void close_playback(Editor& editor);
 
+  // --- Animation ------------------------------------------------------------------------
+  // The session to export: the one open for playback, else the last recording.
+  bool has_session() const { return has_playback_ || has_recording_; }
+  // Writes the session as one animated glTF (.glb or .gltf), the file `primo replay
+  // --animation` writes (every frame): replayed on the open mesh in the background; the
+  // message says when it is written, or why not. Too large a file is refused at once.
+  void export_animation(Editor& editor, const std::string& path);
+  bool exporting() const { return export_.valid(); }
+
   // Once per frame from Editor::update.
   void update(Editor& editor, double seconds);
 
@@ -69,6 +79,8 @@ class SessionControl {
   bool playing_ = false;
   double time_ = 0.0;
   size_t shown_events_ = 0;
+
+  std::future<std::string> export_;  // the message once written
 };
 
 }  // namespace primo::editor

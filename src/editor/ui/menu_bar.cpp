@@ -61,6 +61,9 @@ void draw_menu_bar(Editor& e, UiState& ui) {
     }
     if (ImGui::MenuItem("Save scenario as...", keys(Action::SaveAs), false, doc != nullptr)) ask_save_scenario(e, ui);
     if (ImGui::MenuItem("Export deformed mesh...", keys(Action::Export), false, doc != nullptr)) ask_save_mesh(e, ui);
+    if (ImGui::MenuItem("Export session animation (.glb)...", nullptr, false,
+                        doc != nullptr && e.sessions.has_session() && !e.sessions.exporting()))
+      ask_save_session_animation(e, ui);
     if (ImGui::MenuItem("Screenshot...", keys(Action::Screenshot), false, doc != nullptr)) ask_screenshot(e, ui);
     ImGui::Separator();
     if (ImGui::MenuItem("Quit", keys(Action::Quit))) ask_quit(e, ui);
@@ -142,6 +145,7 @@ void draw_file_dialog(Editor& e, UiState& ui) {
     case UiState::Purpose::SaveBeforeDiscard: e.answer_discard(Editor::DiscardAnswer::Save, path); break;
     case UiState::Purpose::SaveMesh: e.save_mesh(path); break;
     case UiState::Purpose::SaveScenario: e.save_scenario(path); break;
+    case UiState::Purpose::SaveSessionAnimation: e.sessions.export_animation(e, path); break;
     case UiState::Purpose::Screenshot:
       ui.screenshot_path = path;
       ui.screenshot_with_ui = false;
@@ -180,6 +184,14 @@ void ask_save_scenario(Editor& e, UiState& ui) {
                  doc->scenario_path.empty() ? fs::current_path().string() : folder_of(doc->scenario_path),
                  doc->scenario_path.empty() ? stem_of(doc->mesh_path) + "-setup.json"
                                             : fs::path(doc->scenario_path).filename().string());
+}
+
+void ask_save_session_animation(Editor& e, UiState& ui) {
+  const Document* doc = e.document();
+  if (!doc || !e.sessions.has_session()) return;
+  ui.purpose = UiState::Purpose::SaveSessionAnimation;
+  ui.dialog.open(FileDialog::Mode::Save, "Export the session as an animated glTF", {".glb", ".gltf"},
+                 folder_of(doc->mesh_path), stem_of(doc->mesh_path) + "-session.glb");
 }
 
 void ask_screenshot(Editor& e, UiState& ui) {

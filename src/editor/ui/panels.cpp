@@ -562,13 +562,15 @@ void draw_properties(Editor& e, UiState& ui, float top, float height) {
   // moved the second).
   const std::pair<const char*, void (*)(Editor&)> sections[] = {
       {"tool", tool_section},       {"handles", handles_section}, {"prisms", prisms_section},
-      {"history", history_section}, {"display", display_section}, {"solver", solver_section},
-      {"session", session_section}};
+      {"history", history_section}, {"display", display_section}, {"solver", solver_section}};
   for (const auto& [id, draw] : sections) {
     ImGui::PushID(id);
     draw(e);
     ImGui::PopID();
   }
+  ImGui::PushID("session");
+  session_section(e, ui);  // its export asks for a file through the window's dialog
+  ImGui::PopID();
   ImGui::End();
 }
 

@@ -26,7 +26,7 @@ struct UiState {
   std::optional<KeyCapture> key_capture;
   FileDialog dialog;
   enum class Purpose {
-    None, Open, SaveMesh, SaveScenario, Screenshot,
+    None, Open, SaveMesh, SaveScenario, Screenshot, SaveSessionAnimation,
     SaveBeforeDiscard,  // the scenario path for the "Save" answer to Editor::discard_question
   } purpose = Purpose::None;
   // Autosaved work offered for recovery once, at the first frame (autosave.h).
@@ -54,6 +54,7 @@ void ask_open(Editor& editor, UiState& ui);
 void ask_save_mesh(Editor& editor, UiState& ui);
 void ask_save_scenario(Editor& editor, UiState& ui);
 void ask_screenshot(Editor& editor, UiState& ui);
+void ask_save_session_animation(Editor& editor, UiState& ui);
 // Quit, or ask first when there is unsaved work (menu, Ctrl+Q, the window's close button).
 void ask_quit(Editor& editor, UiState& ui);
 

@@ -8,7 +8,7 @@
 
 namespace primo::editor {
 
-void session_section(Editor& e) {
+void session_section(Editor& e, UiState& ui) {
   if (!ImGui::CollapsingHeader("Session")) return;
   SessionControl& s = e.sessions;
   // The path field proposes a file per mesh, again whenever another mesh is opened.
@@ -34,6 +34,10 @@ void session_section(Editor& e) {
   ImGui::EndDisabled();
   ImGui::SameLine();
   if (ImGui::Button("Open for playback")) s.open_playback(e, path);
+  ImGui::BeginDisabled(!s.has_session() || s.exporting());
+  if (ImGui::Button(s.exporting() ? "Exporting animation..." : "Export animation (.glb)..."))
+    ask_save_session_animation(e, ui);
+  ImGui::EndDisabled();
 
   if (!s.has_playback()) return;
   if (s.playing()) {
