@@ -15,9 +15,9 @@ bl_info = {
     "category": "Mesh",
 }
 
-from . import live_follow, operators, panel, properties  # noqa: E402
+from . import gltf_import_fix, live_follow, operators, panel, properties  # noqa: E402
 
-_parts = (properties, operators, panel, live_follow)
+_parts = (properties, operators, panel, live_follow, gltf_import_fix)
 
 
 def register():

@@ -10,6 +10,11 @@ sys.path.insert(0, os.path.dirname(__file__))
 import blender_test_support as t  # noqa: E402
 
 import bpy  # noqa: E402
+import numpy  # noqa: E402
+
+# Debian's NumPy 1.24 has no numpy.bool, which Blender 3.4's glTF importer uses; the add-on
+# restores it while enabled (gltf_import_fix.py). Elsewhere the alias may exist already.
+numpy_had_bool = "bool" in numpy.__dict__
 
 
 def handler_names():
@@ -28,6 +33,7 @@ for round_ in (1, 2):
     assert hasattr(bpy.types, "PRIMO_PT_pose")
     assert "on_depsgraph_update" in handler_names()
     assert "_menu_export" in export_menu_entries()
+    assert numpy.bool is bool, "glTF imports need numpy.bool while the add-on is enabled"
     bpy.ops.preferences.addon_disable(module="primo_pose")
     assert not hasattr(bpy.types.Object, "primo")
     for op in ("add_handle", "solve_now", "export_scenario", "import_scenario"):
@@ -35,6 +41,7 @@ for round_ in (1, 2):
     assert not hasattr(bpy.types, "PRIMO_PT_pose")
     assert "on_depsgraph_update" not in handler_names(), handler_names()
     assert "_menu_export" not in export_menu_entries()
+    assert ("bool" in numpy.__dict__) == numpy_had_bool, "disabling leaves numpy as it was"
     print("round %d: registered and unregistered" % round_)
 
 # No module where the preference points (and none on Python's path in this process, which
