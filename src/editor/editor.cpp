@@ -11,6 +11,7 @@
 #include "primo/output_files.h"
 #include "primo/error.h"
 #include "autosave.h"
+#include "pivot.h"
 #include "primo/mesh_io.h"
 #include "scenario_bridge.h"
 
@@ -329,6 +330,10 @@ void Editor::live_edit() {
   // Paint strokes rebuild the solver's prisms: at most every kPaintSyncSeconds (and at the
   // end of the stroke), not at every dab.
   if (gesture_ == Gesture::Paint) return;
+  // More than poses changed (a session's playback replaces handles and painted factors at
+  // every frame): the handle colours and painted overlay are redrawn now, not at the end.
+  if (doc_ && sent_any_ && (!same_structure(doc_->state, sent_) || doc_->state.active != sent_.active))
+    overlay_changed_ = true;
   sync_solver();
 }
 
@@ -450,9 +455,17 @@ void Editor::make_handle(HandleMode mode) {
   primo::editor::clear_selection(none);
   s.selection = std::make_shared<const FaceMask>(std::move(none));
   commit("New " + std::string(mode_label(mode)) + " '" + s.handles[g].name + "'");
-  if (tools.tool == Tool::Select && is_draggable(mode)) set_tool(Tool::Drag);
+  const std::string tool_note = drag_tool_after_making(mode);
   info("Made '" + s.handles[g].name + "' (" + mode_label(mode) + ") from " +
-       std::to_string(s.handles[g].faces->size()) + " faces");
+       std::to_string(s.handles[g].faces->size()) + " faces" + tool_note);
+}
+
+std::string Editor::drag_tool_after_making(HandleMode mode) {
+  if (tools.tool != Tool::Select || !is_draggable(mode)) return "";
+  set_tool(Tool::Drag);
+  // Said, or a click meant to select would drag the new handle instead.
+  return "; the Drag tool is on to pose it (" + key_map().label(Action::ToolSelect) +
+         " selects again)";
 }
 
 void Editor::delete_handle(int index) {
@@ -542,6 +555,14 @@ bool Editor::gizmo_visible(GizmoKind& kind, glm::dvec3& center) const {
   return true;
 }
 
+glm::dmat3 Editor::gizmo_axes() const {
+  if (!doc_) return glm::dmat3(1.0);
+  const EditState& s = doc_->state;
+  if (s.active < 0 || s.active >= int(s.handles.size())) return glm::dmat3(1.0);
+  return primo::editor::gizmo_axes(tools.gizmo_orientation, s.handles[size_t(s.active)],
+                                   *doc_->topology, camera_);
+}
+
 bool Editor::brush_visible() const {
   return doc_ && (tools.tool == Tool::Paint ||
                   (tools.tool == Tool::Select && tools.shape == SelectShape::Brush));
@@ -549,9 +570,7 @@ bool Editor::brush_visible() const {
 
 glm::dvec3 Editor::handle_pivot(int index) const {
   const HandleGroup& g = doc_->state.handles[index];
-  if (g.mode != HandleMode::Orientation) return to_glm(g.target_center());
-  // Orientation-only groups translate freely: measure where they are.
-  return to_glm(weighted_centroid(*doc_->topology, positions(), *g.faces));
+  return to_glm(handle_motion(g, *doc_->topology, positions()).apply(g.center));
 }
 
 bool Editor::handle_window_position(const std::string& name, double& x, double& y) const {
