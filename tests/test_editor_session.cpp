@@ -13,6 +13,7 @@
 #include "primo/deformer.h"
 #include "primo/geometry.h"
 #include "primo/mesh_generators.h"
+#include "primo/mesh_io.h"
 #include "test_support.h"
 
 using namespace primo;
@@ -436,4 +437,25 @@ TEST(EditorSession, MakingAHandleSaysThatTheDragToolIsOn) {
   EXPECT_EQ(s.editor.tools.tool, Tool::Move);
   ASSERT_NE(s.editor.current_message(), nullptr);
   EXPECT_EQ(s.editor.current_message()->text.find("Drag tool"), std::string::npos);
+}
+
+TEST(EditorSession, OpeningFilesInQuickSuccessionOpensTheNewestWithoutAnError) {
+  const std::string dir = test::temp_dir();
+  std::vector<std::string> paths;
+  for (int k = 0; k < 4; ++k) {
+    paths.push_back(dir + "/bar" + std::to_string(k) + ".obj");
+    save_mesh(make_bar(0.2, 1.0, 2, 10 + 20 * k), paths.back());
+  }
+  Editor e;
+  for (const std::string& p : paths) e.open(p);  // faster than any of them loads
+  for (int i = 0; i < 3000 && (e.file_task_running() || !e.document()); ++i) {
+    e.update(0.016);
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  EXPECT_EQ(e.error_count(), 0u) << "no request is refused";
+  EXPECT_TRUE(e.take_error_popup().empty());
+  ASSERT_NE(e.document(), nullptr);
+  EXPECT_EQ(e.document()->mesh_path, paths.back()) << "the newest request wins";
+  ASSERT_FALSE(e.recent_files().entries().empty());
+  EXPECT_EQ(e.recent_files().entries().front(), paths.back());
 }

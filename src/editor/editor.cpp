@@ -78,7 +78,14 @@ Editor::~Editor() {
 void Editor::open(const std::string& path) { open_file(path, false); }
 
 void Editor::open_file(const std::string& path, bool recovered) {
-  if (task_.valid()) return error("Still busy with " + task_label_ + "; try again when it is done");
+  if (task_.valid()) {
+    // The newest request wins: it opens when the task under way is done, and an open under
+    // way is then dropped unseen. Opening files in quick succession is no error.
+    queued_open_ = QueuedOpen{path, recovered};
+    info("Opening " + file_name(path) + " next (after " + task_label_ + ")");
+    return;
+  }
+  task_is_open_ = true;
   task_label_ = (recovered ? "Recovering " : "Opening ") + file_name(path);
   task_started_ = clock_;
   const int above = stand_in_above_;  // read here: the load runs on another thread
@@ -143,6 +150,7 @@ void Editor::save_mesh(const std::string& path) {
       status_.busy() ? " (not converged yet: the shape shown when you saved)"
       : status_.phase == SolverPhase::Stopped ? " (the solve was stopped before converging)"
                                               : "";
+  task_is_open_ = false;
   task_label_ = "Saving " + file_name(path);
   task_started_ = clock_;
   task_ = std::async(std::launch::async, [this, mesh, path, caveat]() -> std::function<void()> {
@@ -197,11 +205,17 @@ void Editor::update(double seconds) {
 
   if (task_.valid() &&
       task_.wait_for(std::chrono::seconds(0)) == std::future_status::ready) {
+    // An open that a newer one replaced is neither shown nor reported.
+    const bool superseded = task_is_open_ && queued_open_;
     try {
       std::function<void()> finish = task_.get();
-      finish();
+      if (!superseded) finish();
     } catch (const std::exception& e) {
-      error(e.what());
+      if (!superseded) error(e.what());
+    }
+    if (queued_open_) {
+      const QueuedOpen next = *std::exchange(queued_open_, std::nullopt);
+      open_file(next.path, next.recovered);
     }
   }
   if (!doc_) return;

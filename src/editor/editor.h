@@ -91,7 +91,9 @@ class Editor {
   ~Editor();
 
   // --- Files --------------------------------------------------------------------------
-  void open(const std::string& path);   // in the background; errors become messages
+  // In the background; errors become messages. Asked while a file task runs, it opens when
+  // that is done (the newest request wins; an open under way that it replaces is dropped).
+  void open(const std::string& path);
   void adopt(std::unique_ptr<Document> document);
   void save_mesh(const std::string& path);      // in the background, the latest result
   // At once; false (with an error message) when it could not be written. A saved document
@@ -371,6 +373,12 @@ class Editor {
 
   // File task.
   std::future<std::function<void()>> task_;  // returns the work to finish on the UI thread
+  bool task_is_open_ = false;                 // the task opens a file (another may replace it)
+  struct QueuedOpen {
+    std::string path;
+    bool recovered = false;
+  };
+  std::optional<QueuedOpen> queued_open_;     // asked for while a task ran: the newest only
   std::string task_label_;
   double task_started_ = 0.0;
   double clock_ = 0.0;
