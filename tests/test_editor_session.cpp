@@ -152,7 +152,16 @@ TEST(EditorSession, CommandsWithoutAMeshOrSelectionExplainThemselves) {
   s.editor.make_handle(HandleMode::Pose);
   ASSERT_FALSE(s.editor.messages().empty());
   EXPECT_TRUE(s.editor.messages().back().error);
-  EXPECT_NE(s.editor.take_error_popup().find("Select faces"), std::string::npos);
+  // Said in the status bar, where the next click fixes it: no popup to dismiss first.
+  ASSERT_NE(s.editor.current_message(), nullptr);
+  EXPECT_NE(s.editor.current_message()->text.find("Select faces"), std::string::npos);
+  EXPECT_TRUE(s.editor.take_error_popup().empty());
+  EXPECT_EQ(s.editor.error_count(), 1u);
+  // Likewise saving with nothing open.
+  EXPECT_FALSE(e.save_scenario("/tmp/x.json"));
+  EXPECT_TRUE(e.take_error_popup().empty());
+  ASSERT_NE(e.current_message(), nullptr);
+  EXPECT_NE(e.current_message()->text.find("Nothing to save"), std::string::npos);
 }
 
 TEST(EditorSession, DroppedFilesOpenInTheBackground) {

@@ -135,8 +135,8 @@ void Editor::apply_document(std::unique_ptr<Document> doc) {
 }
 
 void Editor::save_mesh(const std::string& path) {
-  if (!doc_) return error("Nothing to save: open a mesh first");
-  if (task_.valid()) return error("Still busy with " + task_label_ + "; try again when it is done");
+  if (!doc_) return error_in_status("Nothing to save: open a mesh first");
+  if (task_.valid()) return error_in_status("Still busy with " + task_label_ + "; try again when it is done");
   try {
     check_mesh_output_path(path);
   } catch (const std::exception& e) {
@@ -172,7 +172,7 @@ std::string Editor::scenario_text(const std::string& path, const std::string& me
 
 bool Editor::save_scenario(const std::string& path) {
   if (!doc_) {
-    error("Nothing to save: open a mesh first");
+    error_in_status("Nothing to save: open a mesh first");
     return false;
   }
   try {
@@ -459,7 +459,7 @@ void Editor::make_handle(HandleMode mode) {
   end_gesture_before_edit();
   std::vector<int> faces = selected_faces(*doc_->state.selection);
   if (faces.empty())
-    return error("Select faces first: press Q and brush over the surface, then make the handle");
+    return error_in_status("Select faces first: press Q and brush over the surface, then make the handle");
   if (int(faces.size()) == doc_->n_faces() && mode != HandleMode::Spring)
     info("Every face is in this handle: the whole mesh will move rigidly");
   if (make_mirrored_handles(faces, mode)) return;
@@ -631,9 +631,13 @@ const Editor::Message* Editor::current_message() const {
 }
 
 void Editor::error(const std::string& text) {
+  error_in_status(text);
+  error_popup_ = text;
+}
+
+void Editor::error_in_status(const std::string& text) {
   messages_.push_back({text, true, clock_, ++message_serial_});
   if (messages_.size() > 200) messages_.erase(messages_.begin());
-  error_popup_ = text;
   ++error_count_;
   std::fprintf(stderr, "[primo edit] error: %s\n", text.c_str());
 }

@@ -233,6 +233,10 @@ class Editor {
   bool quit_requested() const { return quit_requested_; }
   void info(const std::string& text);
   void error(const std::string& text);
+  // An error said in the status bar only, without a popup to dismiss: for a command that
+  // cannot run now (nothing selected, nothing open, nothing recorded), which the user fixes
+  // with the next click. Counted as an error all the same (a script stops on it).
+  void error_in_status(const std::string& text);
 
   // --- State ----------------------------------------------------------------------------
   Document* document() { return doc_.get(); }

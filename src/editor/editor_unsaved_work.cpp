@@ -35,7 +35,7 @@ void Editor::answer_discard(DiscardAnswer answer, const std::string& save_path) 
   }
   if (answer == DiscardAnswer::Save) {
     const std::string path = save_path.empty() && doc_ ? doc_->scenario_path : save_path;
-    if (path.empty()) return error("Choose where to save the scenario first");
+    if (path.empty()) return error_in_status("Choose where to save the scenario first");
     if (!save_scenario(path)) return;  // the question stays: the work is not safe yet
   } else {
     forget_autosave();  // discarded by choice
