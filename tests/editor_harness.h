@@ -99,6 +99,26 @@ struct Harness {
     for (int k = 1; k <= steps; ++k) event(InputEvent::cursor(x + dx * k / steps, y + dy * k / steps));
     event(InputEvent::mouse(GLFW_MOUSE_BUTTON_LEFT, GLFW_RELEASE, 0));
   }
+  // With the rotate gizmo shown: a quarter turn on screen round the outer (view) ring, from
+  // 45 degrees (away from the axis rings), holding Ctrl to snap.
+  void quarter_turn_of_the_view_ring() {
+    GizmoKind kind;
+    glm::dvec3 center;
+    ASSERT_TRUE(editor.gizmo_visible(kind, center));
+    const Camera& cam = editor.camera();
+    const std::vector<glm::dvec2> ring = gizmo_ring(cam, center, GizmoPart::View);
+    const glm::dvec3 c = cam.project(center);
+    const glm::dvec2 start = ring[ring.size() / 8];
+    const glm::dvec2 r = start - glm::dvec2(c.x, c.y);
+    const glm::dvec2 end = glm::dvec2(c.x, c.y) + glm::dvec2(-r.y, r.x);
+    ASSERT_EQ(gizmo_hit(GizmoKind::Rotate, cam, center, start), GizmoPart::View);
+    event(InputEvent::cursor(start.x, start.y));
+    event(InputEvent::key_event(GLFW_KEY_LEFT_CONTROL, GLFW_PRESS, 0));
+    event(InputEvent::mouse(GLFW_MOUSE_BUTTON_LEFT, GLFW_PRESS, GLFW_MOD_CONTROL));
+    event(InputEvent::cursor(end.x, end.y));
+    event(InputEvent::mouse(GLFW_MOUSE_BUTTON_LEFT, GLFW_RELEASE, GLFW_MOD_CONTROL));
+    event(InputEvent::key_event(GLFW_KEY_LEFT_CONTROL, GLFW_RELEASE, GLFW_MOD_CONTROL));
+  }
   double diagonal() const { return editor.document()->topology->bbox_diagonal; }
 };
 

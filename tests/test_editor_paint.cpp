@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "face_colors.h"
 #include "mesh_topology.h"
 #include "paint.h"
 #include "primo/mesh_generators.h"
@@ -70,4 +71,23 @@ TEST(EditorPaint, SmoothingSoftensThePaintedEdge) {
   EXPECT_NEAR((*smoothed)[centre + 1], (0.1 + 8.0) / 9.0, 0.005);  // one painted neighbour of 9
   EXPECT_EQ((*smoothed)[0], 1.0);  // far from the paint
   EXPECT_EQ(smooth_factors(nullptr, t), nullptr);
+}
+
+TEST(EditorPaint, SofterJointsAreNoHandleColour) {
+  // Painted softer joints show under handles (55% over them): their colour must not pass for
+  // any handle's, the first (sky blue) above all. Distance in 0..255 RGB.
+  float opacity = 0.0f;
+  const Rgb soft = factor_color(PaintLayer::Height, 0.3, opacity);
+  EXPECT_GT(opacity, 0.0f);
+  auto distance = [](const Rgb& a, const Rgb& b) {
+    return 255.0 * std::sqrt(std::pow(a[0] - b[0], 2) + std::pow(a[1] - b[1], 2) + std::pow(a[2] - b[2], 2));
+  };
+  HandleGroup g;
+  for (int slot = 0; slot < 8; ++slot) {
+    g.color = slot;
+    EXPECT_GT(distance(soft, handle_color(g)), 100.0) << "palette slot " << slot;
+  }
+  g.mode = HandleMode::Fixed;
+  EXPECT_GT(distance(soft, handle_color(g)), 100.0) << "fixed regions";
+  EXPECT_GT(distance(soft, selection_color()), 100.0);
 }

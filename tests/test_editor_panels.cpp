@@ -15,6 +15,8 @@
 #include "editor.h"
 #include "panels.h"
 #include "primo/mesh_generators.h"
+#include "shown_value.h"
+#include "widgets.h"
 
 using namespace primo;
 using namespace primo::editor;
@@ -62,6 +64,8 @@ TEST(EditorPanels, NoTwoWidgetsOfThePropertiesPanelShareAnId) {
   auto doc = make_document(make_cylinder(0.25, 1.0, 8, 10, FaceShape::Quads), "tube.obj");
   const MeshTopology& t = *doc->topology;
   add_handle(doc->state, t, t.rest_points, {0, 1, 2}, HandleMode::Spring);
+  // A posed handle, active: its rotation fields (axis-angle and Euler) and its Pivot row.
+  add_handle(doc->state, t, t.rest_points, {3, 4, 5}, HandleMode::Pose);
   e.adopt(std::move(doc));
   UiState ui;
   for (Tool tool : {Tool::Select, Tool::Paint, Tool::Move}) {
@@ -78,4 +82,23 @@ TEST(EditorPanels, NoTwoWidgetsOfThePropertiesPanelShareAnId) {
   }
   // Hovering only: nothing was changed.
   EXPECT_EQ(e.document()->state.prisms.width, 1.0);
+}
+
+TEST(EditorPanels, NumberFieldsPutNoSignOnNothing) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.4f", shown_value(-1e-17, 4));
+  EXPECT_STREQ(text, "0.0000") << "not -0.0000";
+  std::snprintf(text, sizeof text, "%.4f", shown_value(-0.00006, 4));
+  EXPECT_STREQ(text, "-0.0001");
+  EXPECT_EQ(shown_value(0.3, 4), 0.3);
+  EXPECT_EQ(shown_value(-2e-3, 2), 0.0);
+  // A field drawn without being touched changes nothing, the tiny value included.
+  HeadlessImGui imgui;
+  Vec3 v(-1e-17, 0.5, 0.0);
+  ImGui::NewFrame();
+  ImGui::Begin("fields");
+  EXPECT_FALSE(drag_vec3("Move", v, 0.01f, 4));
+  ImGui::End();
+  ImGui::Render();
+  EXPECT_EQ(v, Vec3(-1e-17, 0.5, 0.0));
 }

@@ -13,6 +13,7 @@
 #include "primo/deformer.h"
 #include "primo/geometry.h"
 #include "primo/mesh_generators.h"
+#include "primo/mesh_io.h"
 #include "test_support.h"
 
 using namespace primo;
@@ -151,7 +152,16 @@ TEST(EditorSession, CommandsWithoutAMeshOrSelectionExplainThemselves) {
   s.editor.make_handle(HandleMode::Pose);
   ASSERT_FALSE(s.editor.messages().empty());
   EXPECT_TRUE(s.editor.messages().back().error);
-  EXPECT_NE(s.editor.take_error_popup().find("Select faces"), std::string::npos);
+  // Said in the status bar, where the next click fixes it: no popup to dismiss first.
+  ASSERT_NE(s.editor.current_message(), nullptr);
+  EXPECT_NE(s.editor.current_message()->text.find("Select faces"), std::string::npos);
+  EXPECT_TRUE(s.editor.take_error_popup().empty());
+  EXPECT_EQ(s.editor.error_count(), 1u);
+  // Likewise saving with nothing open.
+  EXPECT_FALSE(e.save_scenario("/tmp/x.json"));
+  EXPECT_TRUE(e.take_error_popup().empty());
+  ASSERT_NE(e.current_message(), nullptr);
+  EXPECT_NE(e.current_message()->text.find("Nothing to save"), std::string::npos);
 }
 
 TEST(EditorSession, DroppedFilesOpenInTheBackground) {
@@ -203,18 +213,7 @@ TEST(EditorSession, GizmoMovesAndRotatesTheActiveHandleExactly) {
   s.key(GLFW_KEY_E);
   ASSERT_TRUE(s.editor.gizmo_visible(kind, center));
   EXPECT_EQ(kind, GizmoKind::Rotate);
-  const std::vector<glm::dvec2> ring = gizmo_ring(cam, center, GizmoPart::View);
-  const glm::dvec3 c = cam.project(center);
-  const glm::dvec2 start = ring[ring.size() / 8];  // 45 degrees: away from the axis rings' lines
-  const glm::dvec2 r = start - glm::dvec2(c.x, c.y);
-  const glm::dvec2 end = glm::dvec2(c.x, c.y) + glm::dvec2(-r.y, r.x);  // a quarter turn on screen
-  ASSERT_EQ(gizmo_hit(GizmoKind::Rotate, cam, center, start), GizmoPart::View);
-  s.event(InputEvent::cursor(start.x, start.y));
-  s.event(InputEvent::key_event(GLFW_KEY_LEFT_CONTROL, GLFW_PRESS, 0));
-  s.event(InputEvent::mouse(GLFW_MOUSE_BUTTON_LEFT, GLFW_PRESS, GLFW_MOD_CONTROL));
-  s.event(InputEvent::cursor(end.x, end.y));
-  s.event(InputEvent::mouse(GLFW_MOUSE_BUTTON_LEFT, GLFW_RELEASE, GLFW_MOD_CONTROL));
-  s.event(InputEvent::key_event(GLFW_KEY_LEFT_CONTROL, GLFW_RELEASE, GLFW_MOD_CONTROL));
+  s.quarter_turn_of_the_view_ring();
   const Eigen::AngleAxisd aa(d.state.handles[1].pose.rotation);
   EXPECT_NEAR(aa.angle() * 180.0 / M_PI, 90.0, 1e-9);
   const glm::dvec3 f = cam.forward();
@@ -428,4 +427,44 @@ TEST(EditorSession, StatusMessagesGoStaleAfterAToolChangeOrTenSeconds) {
   for (int k = 0; k < 11; ++k) s.editor.update(1.0);
   ASSERT_NE(s.editor.current_message(), nullptr) << "errors stay longer";
   EXPECT_TRUE(s.editor.current_message()->error);
+}
+
+TEST(EditorSession, MakingAHandleSaysThatTheDragToolIsOn) {
+  Harness s;
+  s.key(GLFW_KEY_Q);
+  s.select_where(0.9, 2);
+  s.editor.make_handle(HandleMode::Pose);
+  EXPECT_EQ(s.editor.tools.tool, Tool::Drag);
+  ASSERT_NE(s.editor.current_message(), nullptr) << "the tool change does not hide the message";
+  EXPECT_NE(s.editor.current_message()->text.find("the Drag tool is on"), std::string::npos)
+      << s.editor.current_message()->text;
+  EXPECT_NE(s.editor.current_message()->text.find("Q selects again"), std::string::npos);
+  // With another tool the tool stays, and the message says nothing of it.
+  s.key(GLFW_KEY_W);
+  s.select_where(-1, 0.1);
+  s.editor.make_handle(HandleMode::Fixed);
+  EXPECT_EQ(s.editor.tools.tool, Tool::Move);
+  ASSERT_NE(s.editor.current_message(), nullptr);
+  EXPECT_EQ(s.editor.current_message()->text.find("Drag tool"), std::string::npos);
+}
+
+TEST(EditorSession, OpeningFilesInQuickSuccessionOpensTheNewestWithoutAnError) {
+  const std::string dir = test::temp_dir();
+  std::vector<std::string> paths;
+  for (int k = 0; k < 4; ++k) {
+    paths.push_back(dir + "/bar" + std::to_string(k) + ".obj");
+    save_mesh(make_bar(0.2, 1.0, 2, 10 + 20 * k), paths.back());
+  }
+  Editor e;
+  for (const std::string& p : paths) e.open(p);  // faster than any of them loads
+  for (int i = 0; i < 3000 && (e.file_task_running() || !e.document()); ++i) {
+    e.update(0.016);
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  EXPECT_EQ(e.error_count(), 0u) << "no request is refused";
+  EXPECT_TRUE(e.take_error_popup().empty());
+  ASSERT_NE(e.document(), nullptr);
+  EXPECT_EQ(e.document()->mesh_path, paths.back()) << "the newest request wins";
+  ASSERT_FALSE(e.recent_files().entries().empty());
+  EXPECT_EQ(e.recent_files().entries().front(), paths.back());
 }

@@ -37,14 +37,19 @@ bool same_handles(const std::vector<HandleGroup>& a, const std::vector<HandleGro
   return true;
 }
 
+// Saves a bar as DIR/bar.obj and opens it in `e`.
+void open_bar(Editor& e, const std::string& dir) {
+  save_mesh(make_bar(0.2, 1.0, 2, 10), dir + "/bar.obj");
+  e.adopt(make_document(load_mesh(dir + "/bar.obj"), dir + "/bar.obj"));
+  e.update(0.016);
+}
+
 }  // namespace
 
 TEST(EditorSessions, RecordSaveAndPlayBack) {
   const std::string dir = primo::test::temp_dir();
-  save_mesh(make_bar(0.2, 1.0, 2, 10), dir + "/bar.obj");
   Editor e;
-  e.adopt(make_document(load_mesh(dir + "/bar.obj"), dir + "/bar.obj"));
-  e.update(0.016);
+  open_bar(e, dir);
   e.sessions.start_recording(e);
   ASSERT_TRUE(e.sessions.recording());
   Document* d = e.document();
@@ -170,4 +175,33 @@ TEST(EditorSessions, ExportsTheAnimationTheReplayCommandWrites) {
   e.sessions.export_animation(e, dir + "/anim.obj");
   EXPECT_FALSE(e.sessions.exporting());
   EXPECT_NE(e.messages().back().text.find("anim.obj: an animation is written as glTF"), std::string::npos);
+}
+
+TEST(EditorSessions, PlaybackRedrawsHandleColoursWhenTheHandlesChange) {
+  const std::string dir = primo::test::temp_dir();
+  Editor e;
+  open_bar(e, dir);
+  e.sessions.start_recording(e);
+  Document* d = e.document();
+  for (int k = 0; k < 5; ++k) e.update(0.016);
+  add_handle(d->state, *d->topology, d->topology->rest_points, faces_with(*d, -1, 0.05), HandleMode::Fixed);
+  e.commit("fixed");
+  for (int k = 0; k < 5; ++k) e.update(0.016);
+  e.sessions.save(e, dir + "/s.session.json");
+
+  e.adopt(make_document(load_mesh(dir + "/bar.obj"), dir + "/bar.obj"));
+  e.update(0.016);
+  e.sessions.open_playback(e, dir + "/s.session.json");
+  ASSERT_TRUE(e.sessions.has_playback());
+  d = e.document();
+  e.sessions.play(e);
+  e.take_overlay_changed();
+  bool redrawn = false;
+  for (int i = 0; i < 100 && d->state.handles.empty(); ++i) {
+    e.update(0.016);
+    if (!d->state.handles.empty()) redrawn = e.take_overlay_changed();
+    else e.take_overlay_changed();
+  }
+  ASSERT_EQ(d->state.handles.size(), 1u);
+  EXPECT_TRUE(redrawn) << "the new handle's colour is drawn in the frame it appears";
 }

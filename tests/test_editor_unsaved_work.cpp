@@ -273,3 +273,20 @@ TEST(EditorPreferences, AreKeptBetweenRunsAndAppliedAtStart) {
   EXPECT_EQ(load_preferences().brush_radius, Preferences{}.brush_radius);
   fs::remove(file);
 }
+
+TEST(EditorUnsavedWork, TheAutosaveAtExitKeepsThePoseTheSolveReached) {
+  // SIGTERM right after an edit: the autosave has the solved state of that edit, not none and
+  // not the one of the edit before.
+  Posed p;
+  ASSERT_TRUE(settle(p.e));
+  Document& d = *p.e.document();
+  d.state.handles[1].pose.translate = Vec3(0.5, 0.0, 0.0);
+  p.e.commit("pose again");
+  ASSERT_TRUE(p.e.autosave_before_exit());
+  const Scenario s = load_scenario(autosave_path(p.mesh));
+  ASSERT_TRUE(s.solved_state.has_value());
+  // The top's faces are held by the handle: their motion is its translation.
+  const int top_face = (*d.state.handles[1].faces)[0];
+  EXPECT_LT((s.solved_state->face_motions[size_t(top_face)].translation - Vec3(0.5, 0, 0)).norm(), 1e-9);
+  remove_autosave(autosave_path(p.mesh));
+}

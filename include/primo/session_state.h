@@ -53,7 +53,7 @@ struct SessionHandle {
   std::shared_ptr<const std::vector<int>> faces;  // sorted, distinct, never empty
   SessionHandleMode mode = SessionHandleMode::Pose;
   double stiffness = 10.0;     // Spring only: the force's stiffness
-  Vec3 center = Vec3::Zero();  // rest area-weighted centroid: the pivot
+  Vec3 center = Vec3::Zero();  // the pivot, a rest point (the centroid unless placed elsewhere)
   SessionPose pose;
   int color = 0;               // the editor's palette slot (not seen by the solver)
 

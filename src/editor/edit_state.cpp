@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "pivot.h"
 #include "primo/session_state.h"
 
 namespace primo::editor {
@@ -102,10 +103,10 @@ int add_handle(EditState& state, const MeshTopology& topology, const std::vector
     if (rest.empty()) continue;
     new_index[g] = int(kept.size());
     if (rest.size() != h.faces->size()) {
-      // The pivot stays the rest centroid of what is left; the pose is kept.
-      h.center = area_weighted_centroid(topology.rest_geometry, rest);
-      const Vec3 moved_center = state.handles[g].transform().apply(h.center);
-      h.pose.translate = moved_center - h.center;
+      // A pivot at the rest centroid stays the rest centroid of what is left; one placed
+      // elsewhere (a joint) stays there. The rigid motion is kept either way.
+      if (h.center == area_weighted_centroid(topology.rest_geometry, *h.faces))
+        move_pivot(h, area_weighted_centroid(topology.rest_geometry, rest));
       h.faces = std::make_shared<const std::vector<int>>(std::move(rest));
     }
     kept.push_back(std::move(h));

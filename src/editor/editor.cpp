@@ -11,6 +11,7 @@
 #include "primo/output_files.h"
 #include "primo/error.h"
 #include "autosave.h"
+#include "pivot.h"
 #include "primo/mesh_io.h"
 #include "scenario_bridge.h"
 
@@ -77,7 +78,14 @@ Editor::~Editor() {
 void Editor::open(const std::string& path) { open_file(path, false); }
 
 void Editor::open_file(const std::string& path, bool recovered) {
-  if (task_.valid()) return error("Still busy with " + task_label_ + "; try again when it is done");
+  if (task_.valid()) {
+    // The newest request wins: it opens when the task under way is done, and an open under
+    // way is then dropped unseen. Opening files in quick succession is no error.
+    queued_open_ = QueuedOpen{path, recovered};
+    info("Opening " + file_name(path) + " next (after " + task_label_ + ")");
+    return;
+  }
+  task_is_open_ = true;
   task_label_ = (recovered ? "Recovering " : "Opening ") + file_name(path);
   task_started_ = clock_;
   const int above = stand_in_above_;  // read here: the load runs on another thread
@@ -127,8 +135,8 @@ void Editor::apply_document(std::unique_ptr<Document> doc) {
 }
 
 void Editor::save_mesh(const std::string& path) {
-  if (!doc_) return error("Nothing to save: open a mesh first");
-  if (task_.valid()) return error("Still busy with " + task_label_ + "; try again when it is done");
+  if (!doc_) return error_in_status("Nothing to save: open a mesh first");
+  if (task_.valid()) return error_in_status("Still busy with " + task_label_ + "; try again when it is done");
   try {
     check_mesh_output_path(path);
   } catch (const std::exception& e) {
@@ -142,6 +150,7 @@ void Editor::save_mesh(const std::string& path) {
       status_.busy() ? " (not converged yet: the shape shown when you saved)"
       : status_.phase == SolverPhase::Stopped ? " (the solve was stopped before converging)"
                                               : "";
+  task_is_open_ = false;
   task_label_ = "Saving " + file_name(path);
   task_started_ = clock_;
   task_ = std::async(std::launch::async, [this, mesh, path, caveat]() -> std::function<void()> {
@@ -163,7 +172,7 @@ std::string Editor::scenario_text(const std::string& path, const std::string& me
 
 bool Editor::save_scenario(const std::string& path) {
   if (!doc_) {
-    error("Nothing to save: open a mesh first");
+    error_in_status("Nothing to save: open a mesh first");
     return false;
   }
   try {
@@ -196,11 +205,17 @@ void Editor::update(double seconds) {
 
   if (task_.valid() &&
       task_.wait_for(std::chrono::seconds(0)) == std::future_status::ready) {
+    // An open that a newer one replaced is neither shown nor reported.
+    const bool superseded = task_is_open_ && queued_open_;
     try {
       std::function<void()> finish = task_.get();
-      finish();
+      if (!superseded) finish();
     } catch (const std::exception& e) {
-      error(e.what());
+      if (!superseded) error(e.what());
+    }
+    if (queued_open_) {
+      const QueuedOpen next = *std::exchange(queued_open_, std::nullopt);
+      open_file(next.path, next.recovered);
     }
   }
   if (!doc_) return;
@@ -329,6 +344,10 @@ void Editor::live_edit() {
   // Paint strokes rebuild the solver's prisms: at most every kPaintSyncSeconds (and at the
   // end of the stroke), not at every dab.
   if (gesture_ == Gesture::Paint) return;
+  // More than poses changed (a session's playback replaces handles and painted factors at
+  // every frame): the handle colours and painted overlay are redrawn now, not at the end.
+  if (doc_ && sent_any_ && (!same_structure(doc_->state, sent_) || doc_->state.active != sent_.active))
+    overlay_changed_ = true;
   sync_solver();
 }
 
@@ -440,7 +459,7 @@ void Editor::make_handle(HandleMode mode) {
   end_gesture_before_edit();
   std::vector<int> faces = selected_faces(*doc_->state.selection);
   if (faces.empty())
-    return error("Select faces first: press Q and brush over the surface, then make the handle");
+    return error_in_status("Select faces first: press Q and brush over the surface, then make the handle");
   if (int(faces.size()) == doc_->n_faces() && mode != HandleMode::Spring)
     info("Every face is in this handle: the whole mesh will move rigidly");
   if (make_mirrored_handles(faces, mode)) return;
@@ -450,9 +469,17 @@ void Editor::make_handle(HandleMode mode) {
   primo::editor::clear_selection(none);
   s.selection = std::make_shared<const FaceMask>(std::move(none));
   commit("New " + std::string(mode_label(mode)) + " '" + s.handles[g].name + "'");
-  if (tools.tool == Tool::Select && is_draggable(mode)) set_tool(Tool::Drag);
+  const std::string tool_note = drag_tool_after_making(mode);
   info("Made '" + s.handles[g].name + "' (" + mode_label(mode) + ") from " +
-       std::to_string(s.handles[g].faces->size()) + " faces");
+       std::to_string(s.handles[g].faces->size()) + " faces" + tool_note);
+}
+
+std::string Editor::drag_tool_after_making(HandleMode mode) {
+  if (tools.tool != Tool::Select || !is_draggable(mode)) return "";
+  set_tool(Tool::Drag);
+  // Said, or a click meant to select would drag the new handle instead.
+  return "; the Drag tool is on to pose it (" + key_map().label(Action::ToolSelect) +
+         " selects again)";
 }
 
 void Editor::delete_handle(int index) {
@@ -542,6 +569,14 @@ bool Editor::gizmo_visible(GizmoKind& kind, glm::dvec3& center) const {
   return true;
 }
 
+glm::dmat3 Editor::gizmo_axes() const {
+  if (!doc_) return glm::dmat3(1.0);
+  const EditState& s = doc_->state;
+  if (s.active < 0 || s.active >= int(s.handles.size())) return glm::dmat3(1.0);
+  return primo::editor::gizmo_axes(tools.gizmo_orientation, s.handles[size_t(s.active)],
+                                   *doc_->topology, camera_);
+}
+
 bool Editor::brush_visible() const {
   return doc_ && (tools.tool == Tool::Paint ||
                   (tools.tool == Tool::Select && tools.shape == SelectShape::Brush));
@@ -549,9 +584,7 @@ bool Editor::brush_visible() const {
 
 glm::dvec3 Editor::handle_pivot(int index) const {
   const HandleGroup& g = doc_->state.handles[index];
-  if (g.mode != HandleMode::Orientation) return to_glm(g.target_center());
-  // Orientation-only groups translate freely: measure where they are.
-  return to_glm(weighted_centroid(*doc_->topology, positions(), *g.faces));
+  return to_glm(handle_motion(g, *doc_->topology, positions()).apply(g.center));
 }
 
 bool Editor::handle_window_position(const std::string& name, double& x, double& y) const {
@@ -598,9 +631,13 @@ const Editor::Message* Editor::current_message() const {
 }
 
 void Editor::error(const std::string& text) {
+  error_in_status(text);
+  error_popup_ = text;
+}
+
+void Editor::error_in_status(const std::string& text) {
   messages_.push_back({text, true, clock_, ++message_serial_});
   if (messages_.size() > 200) messages_.erase(messages_.begin());
-  error_popup_ = text;
   ++error_count_;
   std::fprintf(stderr, "[primo edit] error: %s\n", text.c_str());
 }

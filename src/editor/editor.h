@@ -17,6 +17,7 @@
 #include "camera.h"
 #include "document.h"
 #include "gizmo.h"
+#include "gizmo_orientation.h"
 #include "input.h"
 #include "mirror.h"
 #include "paint.h"
@@ -42,6 +43,8 @@ struct ToolSettings {
   double paint_strength = 1.0; // how far one dab moves a face towards the value (0..1]
   Falloff paint_falloff = Falloff::Constant;  // from the brush's centre to its rim
   bool xray = false;           // selections reach hidden faces too
+  // The frame of the gizmo's axes (gizmo_orientation.h); Comma cycles through them.
+  GizmoOrientation gizmo_orientation = GizmoOrientation::Global;
   double linked_angle_deg = 30.0;  // select linked by angle stops at sharper edges
   // Symmetry across the planes perpendicular to X, Y, Z through the mesh's centre: selecting
   // and painting act on the twin faces too, and handles are made in mirrored pairs.
@@ -88,7 +91,9 @@ class Editor {
   ~Editor();
 
   // --- Files --------------------------------------------------------------------------
-  void open(const std::string& path);   // in the background; errors become messages
+  // In the background; errors become messages. Asked while a file task runs, it opens when
+  // that is done (the newest request wins; an open under way that it replaces is dropped).
+  void open(const std::string& path);
   void adopt(std::unique_ptr<Document> document);
   void save_mesh(const std::string& path);      // in the background, the latest result
   // At once; false (with an error message) when it could not be written. A saved document
@@ -120,6 +125,9 @@ class Editor {
   // Autosave (autosave.h): every `seconds` while there are unsaved changes (0: never).
   void set_autosave_interval(double seconds) { autosave_every_ = seconds; }
   bool autosave_now();  // writes the autosave of the open document; false when it could not
+  // The autosave written when the editor is told to end (SIGTERM, a timeout): a solve under
+  // way is stopped first (waiting at most `max_seconds`), so the file keeps the pose shown.
+  bool autosave_before_exit(double max_seconds = 2.0);
   // Opens an autosaved scenario as unsaved work with no file of its own (Save asks where).
   void recover(const std::string& autosave_file);
   RecentFiles& recent_files() { return recent_; }
@@ -175,6 +183,21 @@ class Editor {
   void set_active_handle(int index);
   void set_handle_mode(int index, HandleMode mode);
 
+  // --- Pivots (editor_pivot.cpp, pivot.h) -------------------------------------------------
+  // Each is an undo step that leaves the handle's faces where they are; a mirror twin's pivot
+  // follows as its mirror image. False (with a message where the user asked for something
+  // impossible) when nothing changed.
+  // The pivot as a point of the handle's rest pose (the scenario's transform `center`).
+  bool set_pivot(int index, const Vec3& rest_point);
+  // The same without an undo step, for a panel field while it is dragged (commit() at its end).
+  bool place_pivot(int index, const Vec3& rest_point);
+  // The pivot where `world` is in the view now (the point moves with the handle).
+  bool set_pivot_at(int index, const Vec3& world);
+  bool pivot_to_selection(int index);      // the selected faces' centre as shown now
+  bool pivot_to_rest_centroid(int index);  // where a new handle's pivot is
+  // The active handle's pivot to the surface under the cursor (Shift+S, Ctrl+Shift+right-click).
+  bool pivot_to_cursor();
+
   // --- Symmetry (editor_mirror.cpp) ------------------------------------------------------
   // Turns mirroring across the plane perpendicular to `axis` on or off; turning it on
   // matches the twin faces (once per mesh and axis) and says how many were matched and how.
@@ -210,6 +233,10 @@ class Editor {
   bool quit_requested() const { return quit_requested_; }
   void info(const std::string& text);
   void error(const std::string& text);
+  // An error said in the status bar only, without a popup to dismiss: for a command that
+  // cannot run now (nothing selected, nothing open, nothing recorded), which the user fixes
+  // with the next click. Counted as an error all the same (a script stops on it).
+  void error_in_status(const std::string& text);
 
   // --- State ----------------------------------------------------------------------------
   Document* document() { return doc_.get(); }
@@ -242,10 +269,12 @@ class Editor {
   int hovered_handle() const { return hovered_handle_; }
   // The gizmo on the active handle, if the tool shows one.
   bool gizmo_visible(GizmoKind& kind, glm::dvec3& center) const;
+  // The gizmo's axes (columns) in tools.gizmo_orientation for the active handle as posed now.
+  glm::dmat3 gizmo_axes() const;
   GizmoPart gizmo_hover() const { return gizmo_hover_; }
   GizmoPart gizmo_active() const { return gizmo_ ? gizmo_->part() : GizmoPart::None; }
   bool brush_visible() const;
-  // World position of a handle's pivot as drawn now.
+  // World position of a handle's pivot as drawn now (where the gizmo is).
   glm::dvec3 handle_pivot(int index) const;
   // Window coordinates of a handle's pivot (for scripts); false when there is no such handle.
   bool handle_window_position(const std::string& name, double& x, double& y) const;
@@ -289,6 +318,9 @@ class Editor {
   void brush_dab();
   std::vector<int> faces_under(const ScreenShape& shape);
   int face_at_cursor();
+  // The surface point under the cursor as shown now: the pick buffer's depth along the mouse
+  // ray, else the centroid of the face there.
+  std::optional<Vec3> surface_point_at_cursor();
   void update_hover();
   void sync_solver();
   void apply_document(std::unique_ptr<Document> doc);
@@ -303,6 +335,9 @@ class Editor {
   // make_handle with a mirror on: the selection split into mirrored pairs when it lies on
   // both sides (or one) away from the plane. False when it is not such a selection.
   bool make_mirrored_handles(const std::vector<int>& faces, HandleMode mode);
+  // After a handle is made with the Select tool, the Drag tool, so that it can be posed at
+  // once. Returns what the message about the new handle adds ("" when the tool stays).
+  std::string drag_tool_after_making(HandleMode mode);
 
   std::function<void()> wake_ui_;
   std::unique_ptr<Document> doc_;
@@ -342,6 +377,12 @@ class Editor {
 
   // File task.
   std::future<std::function<void()>> task_;  // returns the work to finish on the UI thread
+  bool task_is_open_ = false;                 // the task opens a file (another may replace it)
+  struct QueuedOpen {
+    std::string path;
+    bool recovered = false;
+  };
+  std::optional<QueuedOpen> queued_open_;     // asked for while a task ran: the newest only
   std::string task_label_;
   double task_started_ = 0.0;
   double clock_ = 0.0;

@@ -91,6 +91,12 @@ void Editor::on_mouse_button(const InputEvent& e, bool ui_mouse) {
       gesture_ = (shift || alt) ? Gesture::Pan : ctrl ? Gesture::Zoom : Gesture::Orbit;
       break;
     case GLFW_MOUSE_BUTTON_RIGHT:
+      // Ctrl+Shift+right-click places the active handle's pivot on the surface (Blender puts
+      // its cursor with Shift+right-click, which pans here).
+      if (ctrl && shift && !alt) {
+        pivot_to_cursor();
+        break;
+      }
       gesture_ = (alt || ctrl) ? Gesture::Zoom : shift ? Gesture::Pan : Gesture::Orbit;
       break;
     case GLFW_MOUSE_BUTTON_LEFT:
@@ -134,9 +140,10 @@ void Editor::begin_tool_gesture(int mods) {
       GizmoKind kind;
       glm::dvec3 center;
       if (gizmo_visible(kind, center)) {
-        const GizmoPart part = gizmo_hit(kind, camera_, center, cursor_);
+        const glm::dmat3 axes = gizmo_axes();
+        const GizmoPart part = gizmo_hit(kind, camera_, center, cursor_, axes);
         if (part != GizmoPart::None) {
-          gizmo_ = std::make_unique<GizmoDrag>(kind, part, camera_, center, cursor_);
+          gizmo_ = std::make_unique<GizmoDrag>(kind, part, camera_, center, cursor_, axes);
           drag_group_ = s.active;
           drag_faces_ = s.handles[s.active].faces;
           drag_start_pose_ = s.handles[s.active].pose;
@@ -170,16 +177,8 @@ void Editor::begin_tool_gesture(int mods) {
   drag_start_pose_ = s.handles[g].pose;
   // The grabbed point: where the cursor meets the surface (eye depth from the pick buffer).
   drag_anchor_ = handle_pivot(g);
-  if (picker_) {
-    const PickImage image = picker_->read(int(cursor_.x), int(cursor_.y), 1, 1);
-    const double depth = image.depth_at(int(cursor_.x), int(cursor_.y));
-    if (std::isfinite(depth)) {
-      const Ray ray = camera_.ray(cursor_);
-      const double along = glm::dot(ray.direction, camera_.forward());
-      const double t = (depth - glm::dot(ray.origin - camera_.eye(), camera_.forward())) / along;
-      drag_anchor_ = ray.origin + t * ray.direction;
-    }
-  }
+  if (picker_)
+    if (const std::optional<Vec3> point = surface_point_at_cursor()) drag_anchor_ = to_glm(*point);
   gesture_ = Gesture::DragHandle;
 }
 
@@ -404,7 +403,7 @@ void Editor::update_hover() {
   if (!doc_) return;
   GizmoKind kind;
   glm::dvec3 center;
-  const GizmoPart part = gizmo_visible(kind, center) ? gizmo_hit(kind, camera_, center, cursor_)
+  const GizmoPart part = gizmo_visible(kind, center) ? gizmo_hit(kind, camera_, center, cursor_, gizmo_axes())
                                                      : GizmoPart::None;
   gizmo_hover_ = part;
   if (tools.tool == Tool::Select || tools.tool == Tool::Paint) {

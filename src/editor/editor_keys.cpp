@@ -49,6 +49,10 @@ bool Editor::run_action(Action action) {
       toggle(tools.xray);
       info(tools.xray ? "X-ray selection on: hidden faces are selected too" : "X-ray selection off");
       return true;
+    case Action::CycleGizmoOrientation:
+      tools.gizmo_orientation = next_orientation(tools.gizmo_orientation);
+      info(std::string("Gizmo axes: ") + orientation_label(tools.gizmo_orientation));
+      return true;
     case Action::Cancel: cancel_gesture(); return true;
 
     case Action::SelectAll: select_all(); return true;
@@ -78,6 +82,7 @@ bool Editor::run_action(Action action) {
     case Action::DeleteHandle:
       if (doc_) delete_handle(doc_->state.active);
       return true;
+    case Action::PivotToCursor: pivot_to_cursor(); return true;
 
     case Action::Undo: undo(); return true;
     case Action::Redo: redo(); return true;

@@ -141,14 +141,14 @@ bool Editor::make_mirrored_handles(const std::vector<int>& faces, HandleMode mod
   primo::editor::clear_selection(none);
   s.selection = std::make_shared<const FaceMask>(std::move(none));
   commit("New mirrored " + std::string(mode_label(mode)) + " '" + base + "'");
-  if (tools.tool == Tool::Select && is_draggable(mode)) set_tool(Tool::Drag);
+  const std::string tool_note = drag_tool_after_making(mode);
   std::string text = "Made '" + base + plus_suffix + "' (" + std::to_string(plus.size()) +
                      " faces) and its twin '" + base + minus_suffix + "' (" +
                      std::to_string(minus.size()) + " faces), " + mode_label(mode);
   if (without_twin > 0)
     text += "; " + std::to_string(without_twin) + " of the " + std::to_string(faces.size()) +
             " faces have no twin across " + axis_name(axis);
-  info(text);
+  info(text + tool_note);
   return true;
 }
 

@@ -4,6 +4,8 @@
 #include "autosave.h"
 #include "editor.h"
 
+#include <chrono>
+
 namespace primo::editor {
 
 bool Editor::has_unsaved_changes() const {
@@ -33,7 +35,7 @@ void Editor::answer_discard(DiscardAnswer answer, const std::string& save_path) 
   }
   if (answer == DiscardAnswer::Save) {
     const std::string path = save_path.empty() && doc_ ? doc_->scenario_path : save_path;
-    if (path.empty()) return error("Choose where to save the scenario first");
+    if (path.empty()) return error_in_status("Choose where to save the scenario first");
     if (!save_scenario(path)) return;  // the question stays: the work is not safe yet
   } else {
     forget_autosave();  // discarded by choice
@@ -55,6 +57,21 @@ bool Editor::autosave_now() {
     return false;
   }
   return true;
+}
+
+bool Editor::autosave_before_exit(double max_seconds) {
+  if (!doc_) return false;
+  // A solve under way is stopped where it is, so that the autosave keeps the pose it reached
+  // (solved_state) instead of none, or the one of the edit before. A stop asked for before the
+  // solver took the latest edit is dropped: ask again until it is idle.
+  const auto start = std::chrono::steady_clock::now();
+  while (!worker_->idle_for_latest() &&
+         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() < max_seconds) {
+    worker_->stop();
+    worker_->wait_idle(0.05);
+  }
+  update(0.0);  // takes the stopped solve's result
+  return autosave_now();
 }
 
 void Editor::forget_autosave() {

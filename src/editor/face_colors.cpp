@@ -63,7 +63,9 @@ Rgb factor_color(PaintLayer layer, double factor, float& opacity) {
   // Half a step of opacity per halving or doubling, from 0.35 up.
   const double octaves = std::abs(std::log2(factor));
   opacity = float(std::min(0.85, 0.35 + 0.25 * octaves));
-  if (layer == PaintLayer::Height) return factor < 1.0 ? rgb(40, 110, 255) : rgb(255, 80, 40);
+  // Softer joints in indigo: the handles' palette starts with a sky blue, which a paler blue
+  // under a handle could be taken for.
+  if (layer == PaintLayer::Height) return factor < 1.0 ? rgb(60, 40, 200) : rgb(255, 80, 40);
   return factor < 1.0 ? rgb(175, 80, 255) : rgb(40, 200, 90);
 }
 

@@ -23,11 +23,11 @@ double snap(double v, double step) { return step > 0 ? std::round(v / step) * st
 
 }  // namespace
 
-glm::dvec3 gizmo_axis(GizmoPart part, const Camera& camera) {
+glm::dvec3 gizmo_axis(GizmoPart part, const Camera& camera, const glm::dmat3& axes) {
   switch (part) {
-    case GizmoPart::X: return {1, 0, 0};
-    case GizmoPart::Y: return {0, 1, 0};
-    case GizmoPart::Z: return {0, 0, 1};
+    case GizmoPart::X: return axes[0];
+    case GizmoPart::Y: return axes[1];
+    case GizmoPart::Z: return axes[2];
     default: return -camera.forward();
   }
 }
@@ -37,7 +37,7 @@ double gizmo_world_size(const Camera& camera, const glm::dvec3& center) {
 }
 
 std::vector<glm::dvec2> gizmo_ring(const Camera& camera, const glm::dvec3& center, GizmoPart part,
-                                   int n) {
+                                   const glm::dmat3& axes, int n) {
   std::vector<glm::dvec2> points;
   const glm::dvec3 c = camera.project(center);
   if (part == GizmoPart::View) {
@@ -48,7 +48,7 @@ std::vector<glm::dvec2> gizmo_ring(const Camera& camera, const glm::dvec3& cente
     }
     return points;
   }
-  const glm::dvec3 axis = gizmo_axis(part, camera);
+  const glm::dvec3 axis = gizmo_axis(part, camera, axes);
   const glm::dvec3 u = glm::normalize(glm::cross(axis, std::abs(axis.x) < 0.9 ? glm::dvec3(1, 0, 0)
                                                                                : glm::dvec3(0, 1, 0)));
   const glm::dvec3 v = glm::cross(axis, u);
@@ -61,24 +61,24 @@ std::vector<glm::dvec2> gizmo_ring(const Camera& camera, const glm::dvec3& cente
 }
 
 GizmoPart gizmo_hit(GizmoKind kind, const Camera& camera, const glm::dvec3& center,
-                    const glm::dvec2& cursor) {
+                    const glm::dvec2& cursor, const glm::dmat3& axes) {
   const glm::dvec2 c = xy(camera.project(center));
   GizmoPart best = GizmoPart::None;
   double best_d = kGizmoHitPixels;
-  const GizmoPart axes[] = {GizmoPart::X, GizmoPart::Y, GizmoPart::Z};
+  const GizmoPart arrows[] = {GizmoPart::X, GizmoPart::Y, GizmoPart::Z};
   if (kind == GizmoKind::Translate) {
     if (std::max(std::abs(cursor.x - c.x), std::abs(cursor.y - c.y)) <= kGizmoHitPixels)
       return GizmoPart::View;
     const double size = gizmo_world_size(camera, center);
-    for (GizmoPart p : axes) {
-      const glm::dvec2 tip = xy(camera.project(center + size * gizmo_axis(p, camera)));
+    for (GizmoPart p : arrows) {
+      const glm::dvec2 tip = xy(camera.project(center + size * gizmo_axis(p, camera, axes)));
       const double d = segment_distance(cursor, c, tip);
       if (d < best_d) best_d = d, best = p;
     }
     return best;
   }
   for (GizmoPart p : {GizmoPart::X, GizmoPart::Y, GizmoPart::Z, GizmoPart::View}) {
-    const std::vector<glm::dvec2> ring = gizmo_ring(camera, center, p);
+    const std::vector<glm::dvec2> ring = gizmo_ring(camera, center, p, axes);
     for (size_t i = 0; i < ring.size(); ++i) {
       const double d = segment_distance(cursor, ring[i], ring[(i + 1) % ring.size()]);
       if (d < best_d) best_d = d, best = p;
@@ -88,8 +88,8 @@ GizmoPart gizmo_hit(GizmoKind kind, const Camera& camera, const glm::dvec3& cent
 }
 
 GizmoDrag::GizmoDrag(GizmoKind kind, GizmoPart part, const Camera& camera,
-                     const glm::dvec3& center, const glm::dvec2& cursor)
-    : kind_(kind), part_(part), center_(center), axis_(gizmo_axis(part, camera)),
+                     const glm::dvec3& center, const glm::dvec2& cursor, const glm::dmat3& axes)
+    : kind_(kind), part_(part), center_(center), axis_(gizmo_axis(part, camera, axes)),
       plane_normal_(camera.forward()), start_cursor_(cursor) {
   if (kind_ == GizmoKind::Translate) {
     if (part_ == GizmoPart::View)

@@ -3,7 +3,8 @@
 // moving, three axis rings and a view ring for rotating, all sized to a constant number of
 // pixels. This is the math (hit tests and drags); drawing is in gizmo_draw.
 //
-// Axes are world axes; dragging an arrow moves along its axis (the point of the axis closest
+// Axes are the columns of `axes` (the world's by default; gizmo_orientation.h gives the
+// others); dragging an arrow moves along its axis (the point of the axis closest
 // to the mouse ray), the square moves in the view plane, a ring rotates about its axis by
 // the angle the cursor sweeps around the gizmo centre. Snapping: translation to `snap_step`,
 // rotation to 15 degrees.
@@ -23,20 +24,21 @@ constexpr double kGizmoPixels = 90.0;     // arrow length / ring radius on scree
 constexpr double kGizmoHitPixels = 9.0;   // how close the cursor must be to grab a part
 constexpr double kRotateSnapDegrees = 15.0;
 
-glm::dvec3 gizmo_axis(GizmoPart part, const Camera& camera);  // unit; View: towards the viewer
+// Unit; View: towards the viewer.
+glm::dvec3 gizmo_axis(GizmoPart part, const Camera& camera, const glm::dmat3& axes = glm::dmat3(1.0));
 // World length of the gizmo's arrows at `center`.
 double gizmo_world_size(const Camera& camera, const glm::dvec3& center);
 // Viewport pixels of a ring (axis X/Y/Z or View) sampled at `n` points.
 std::vector<glm::dvec2> gizmo_ring(const Camera& camera, const glm::dvec3& center, GizmoPart part,
-                                   int n = 72);
+                                   const glm::dmat3& axes = glm::dmat3(1.0), int n = 72);
 GizmoPart gizmo_hit(GizmoKind kind, const Camera& camera, const glm::dvec3& center,
-                    const glm::dvec2& cursor);
+                    const glm::dvec2& cursor, const glm::dmat3& axes = glm::dmat3(1.0));
 
 // One drag of a gizmo part, started at `cursor`.
 class GizmoDrag {
  public:
   GizmoDrag(GizmoKind kind, GizmoPart part, const Camera& camera, const glm::dvec3& center,
-            const glm::dvec2& cursor);
+            const glm::dvec2& cursor, const glm::dmat3& axes = glm::dmat3(1.0));
   // The motion since the start: a translation (Translate) or a rotation about the centre
   // (Rotate). With `snap`, translations are rounded to multiples of `snap_step` along the
   // axis (or per component in the view plane) and angles to 15 degrees.

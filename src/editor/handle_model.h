@@ -63,7 +63,9 @@ struct HandleGroup {
   std::shared_ptr<const std::vector<int>> faces;  // sorted, never empty
   HandleMode mode = HandleMode::Pose;
   double stiffness = 10.0;     // Spring only: the force's stiffness
-  Vec3 center = Vec3::Zero();  // rest area-weighted centroid: the pivot
+  // The pivot (pivot.h): a point of the rest pose, the faces' rest area-weighted centroid
+  // unless placed elsewhere.
+  Vec3 center = Vec3::Zero();
   Pose pose;
   int color = 0;               // palette slot, stable across edits
   // Symmetry: the index of the group that mirrors this one across the plane perpendicular to

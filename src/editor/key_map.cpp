@@ -59,6 +59,8 @@ std::vector<ActionInfo> make_actions() {
       {A::BrushLarger, "brush_larger", tools, "larger brush", {{GLFW_KEY_RIGHT_BRACKET, 0}}},
       {A::ToggleXray, "toggle_xray", tools, "x-ray selection (reach hidden faces)",
        {{GLFW_KEY_Z, kAlt}}},
+      {A::CycleGizmoOrientation, "cycle_gizmo_orientation", tools,
+       "gizmo axes: global, local, normal, view", {{GLFW_KEY_COMMA, 0}}},
       {A::Cancel, "cancel", tools, "cancel the current drag or stroke", {{GLFW_KEY_ESCAPE, 0}}},
 
       {A::SelectAll, "select_all", sel, "select all", {{GLFW_KEY_A, 0}}},
@@ -88,6 +90,9 @@ std::vector<ActionInfo> make_actions() {
        {{GLFW_KEY_G, kAlt | kShift}}},
       {A::DeleteHandle, "delete_handle", sel, "delete the active handle",
        {{GLFW_KEY_DELETE, 0}, {GLFW_KEY_X, 0}}},
+      {A::PivotToCursor, "pivot_to_cursor", sel,
+       "the active handle's pivot to the surface under the cursor (also Ctrl+Shift+right-click)",
+       {{GLFW_KEY_S, kShift}}},
 
       {A::Undo, "undo", files, "undo (one drag, stroke or slider change)", {{GLFW_KEY_Z, kCtrl}}},
       {A::Redo, "redo", files, "redo", {{GLFW_KEY_Z, kCtrl | kShift}, {GLFW_KEY_Y, kCtrl}}},

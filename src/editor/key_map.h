@@ -23,11 +23,11 @@ enum class Action {
   TogglePaintOverlay, ToggleGrid, SetFrontFromView, TogglePanels, ShowControls,
   // Tools
   ToolSelect, ShapeBrush, ShapeBox, ShapeLasso, ToolDrag, ToolMove, ToolRotate, ToolPaint,
-  BrushSmaller, BrushLarger, ToggleXray, Cancel,
+  BrushSmaller, BrushLarger, ToggleXray, CycleGizmoOrientation, Cancel,
   // Selection and handles
   SelectAll, SelectNone, SelectInvert, SelectGrow, SelectShrink, SelectLinked,
   SelectLinkedByAngle, MirrorX, MirrorY, MirrorZ, MakeHandle, MakeFixedRegion, MakeSpring,
-  NextHandle, PreviousHandle, ResetHandle, ResetAllHandles, DeleteHandle,
+  NextHandle, PreviousHandle, ResetHandle, ResetAllHandles, DeleteHandle, PivotToCursor,
   // Files and history
   Undo, Redo, UndoGroup, Open, Save, SaveAs, Export, Screenshot, Quit,
   Count

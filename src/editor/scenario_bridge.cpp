@@ -140,13 +140,10 @@ EditState import_scenario(const Scenario& scenario, const ResolvedScenario& reso
     const TransformSpec& t = scenario.handles[i].transform;
     HandleGroup g;
     g.faces = std::make_shared<const std::vector<int>>(h.faces);
-    g.center = area_weighted_centroid(topology.rest_geometry, h.faces);
+    // The file's centre is the pivot; without one, the format's default, the rest centroid.
+    g.center = t.center ? *t.center : area_weighted_centroid(topology.rest_geometry, h.faces);
     g.pose.set_turn(turn_about(t.axis, t.angle_deg));
-    // The file's centre may differ from ours: x' = R (x - c_s) + c_s + t
-    //                                           = R (x - c) + c + t + (I - R)(c_s - c).
-    const Vec3 c_s = t.center ? *t.center : g.center;
-    const Mat3 R = g.pose.rotation.toRotationMatrix();
-    g.pose.translate = t.translate + (c_s - g.center) - R * (c_s - g.center);
+    g.pose.translate = t.translate;
     switch (h.fix) {
       case Fix::All: {
         const bool fixed =

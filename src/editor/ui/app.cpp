@@ -272,7 +272,7 @@ void App::finish_file_task() {
 // Returns how the message goes on: where the work went, or that it could not be kept.
 std::string App::autosave_unsaved_work() {
   if (!editor_.has_unsaved_changes()) return "";
-  if (!editor_.autosave_now()) return "; the unsaved work could not be autosaved";
+  if (!editor_.autosave_before_exit()) return "; the unsaved work could not be autosaved";
   return "; the unsaved work is autosaved to " + autosave_path(editor_.document()->mesh_path);
 }
 

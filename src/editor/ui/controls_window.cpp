@@ -33,6 +33,7 @@ std::vector<ControlsSection> controls_sections(const KeyMap& keys) {
         {"Left drag", "the tool: select, drag a handle, use the gizmo, paint"},
         {"Shift / Ctrl + select", "add to / remove from the selection"},
         {"Ctrl + wheel", "brush radius"},
+        {"Ctrl + Shift + right click", "the active handle's pivot to the surface there"},
         {"Right click", "cancel the current drag or stroke"}}}};
   for (const ActionInfo& a : all_actions()) {
     if (sections.back().title != a.section) sections.push_back({a.section, {}});

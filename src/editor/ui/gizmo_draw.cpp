@@ -42,10 +42,11 @@ void draw_gizmo(const Editor& e, ImDrawList* dl, const ToWindow& to_window) {
   const GizmoPart active = e.gizmo_active();
   const GizmoPart hover = active != GizmoPart::None ? active : e.gizmo_hover();
   const ImVec2 c = to_window(cam.project(center));
+  const glm::dmat3 axes = e.gizmo_axes();
   if (kind == GizmoKind::Translate) {
     const double size = gizmo_world_size(cam, center);
     for (GizmoPart p : {GizmoPart::X, GizmoPart::Y, GizmoPart::Z}) {
-      const ImVec2 tip = to_window(cam.project(center + size * gizmo_axis(p, cam)));
+      const ImVec2 tip = to_window(cam.project(center + size * gizmo_axis(p, cam, axes)));
       const ImU32 col = axis_color(p, hover == p);
       dl->AddLine(c, tip, col, hover == p ? 4.0f : 3.0f);
       // Arrow head.
@@ -66,7 +67,7 @@ void draw_gizmo(const Editor& e, ImDrawList* dl, const ToWindow& to_window) {
     return;
   }
   for (GizmoPart p : {GizmoPart::View, GizmoPart::X, GizmoPart::Y, GizmoPart::Z}) {
-    const std::vector<glm::dvec2> ring = gizmo_ring(cam, center, p);
+    const std::vector<glm::dvec2> ring = gizmo_ring(cam, center, p, axes);
     std::vector<ImVec2> points;
     for (const auto& q : ring) points.push_back(to_window(q));
     dl->AddPolyline(points.data(), int(points.size()), axis_color(p, hover == p), ImDrawFlags_Closed,

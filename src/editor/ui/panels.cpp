@@ -12,6 +12,7 @@
 #include <filesystem>
 
 #include "controls_window.h"
+#include "euler_angles.h"
 #include "face_colors.h"
 #include "gizmo_draw.h"
 #include "menu_bar.h"
@@ -39,6 +40,7 @@ struct RotationFields {
   ImGuiID editing = 0;                 // the field being edited in the last frame (0: none)
   Vec3 axis = Vec3::UnitY();
   double angle_deg = 0.0;
+  Vec3 euler_deg = Vec3::Zero();  // Euler XYZ (euler_angles.h)
 };
 RotationFields rotation_fields;
 
@@ -179,6 +181,20 @@ void symmetry_row(Editor& e) {
   }
 }
 
+// Which frame the gizmo's axes follow (gizmo_orientation.h).
+void gizmo_orientation_combo(Editor& e) {
+  int orientation = int(e.tools.gizmo_orientation);
+  const char* labels[kGizmoOrientations];
+  for (int i = 0; i < kGizmoOrientations; ++i) labels[i] = orientation_label(GizmoOrientation(i));
+  ImGui::SetNextItemWidth(-60);
+  if (ImGui::Combo("Axes", &orientation, labels, kGizmoOrientations))
+    e.tools.gizmo_orientation = GizmoOrientation(orientation);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("The gizmo's axes: the world's, the handle's own as it is turned, its "
+                      "surface normal (Z) or the view's (%s cycles them)",
+                      e.key_map().label(Action::CycleGizmoOrientation).c_str());
+}
+
 void tool_section(Editor& e) {
   if (!ImGui::CollapsingHeader("Tool", ImGuiTreeNodeFlags_DefaultOpen)) return;
   ToolSettings& t = e.tools;
@@ -227,6 +243,7 @@ void tool_section(Editor& e) {
                          "(%.3g units, 15 degrees). Exact values: Handles panel below.",
                          t.tool == Tool::Move ? "arrow or the centre square" : "axis ring or the outer ring",
                          doc ? snap_step_for(doc->topology->bbox_diagonal) : 0.1);
+      gizmo_orientation_combo(e);
       break;
     case Tool::Paint: {
       int layer = int(t.paint_layer);
@@ -268,6 +285,28 @@ void tool_section(Editor& e) {
       break;
     }
   }
+}
+
+// The active handle's pivot: its rest coordinates (the scenario's `center`), and where to put
+// it. Moving it never moves the faces (pivot.h); a drag of the fields is one undo step.
+void pivot_row(Editor& e, int index, float speed) {
+  HandleGroup& h = e.document()->state.handles[size_t(index)];
+  Vec3 pivot = h.center;
+  ImGui::SetNextItemWidth(-60);
+  if (drag_vec3("Pivot", pivot, speed, 4) &&
+      e.place_pivot(index, pivot))
+    e.live_edit();
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("The point the handle turns about, in rest coordinates; the gizmo is drawn "
+                      "where it is now. %s or Ctrl+Shift+right-click puts it on the surface.",
+                      e.key_map().label(Action::PivotToCursor).c_str());
+  if (ImGui::IsItemDeactivatedAfterEdit()) e.commit("Pivot of '" + h.name + "'");
+  const float w = (ImGui::GetContentRegionAvail().x - ImGui::GetStyle().ItemSpacing.x) / 2;
+  if (ImGui::Button("Centre of selection", ImVec2(w, 0))) e.pivot_to_selection(index);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("The pivot to the centre of the selected faces (a joint)");
+  ImGui::SameLine();
+  if (ImGui::Button("Rest centroid", ImVec2(w, 0))) e.pivot_to_rest_centroid(index);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("The pivot back to the centre of the handle's faces");
 }
 
 void handles_section(Editor& e) {
@@ -332,8 +371,7 @@ void handles_section(Editor& e) {
     const float speed = float(0.002 * doc->topology->bbox_diagonal);
     if (uses_translation(h.mode)) {
       ImGui::SetNextItemWidth(-60);
-      track_edit(e, ImGui::DragScalarN(h.mode == HandleMode::Spring ? "Pull" : "Move", ImGuiDataType_Double,
-                                       h.pose.translate.data(), 3, speed, nullptr, nullptr, "%.4f"),
+      track_edit(e, drag_vec3(h.mode == HandleMode::Spring ? "Pull" : "Move", h.pose.translate, speed, 4),
                  "Move '" + h.name + "'");
     }
     if (uses_rotation(h.mode)) {
@@ -344,10 +382,10 @@ void handles_section(Editor& e) {
         const AxisAngle shown = axis_angle_of_turn(h.pose.whole_turn());
         fields.angle_deg = shown.angle_deg;
         fields.axis = shown.axis;
+        fields.euler_deg = euler_xyz_of_turn(h.pose.whole_turn());
       }
       ImGui::SetNextItemWidth(-60);
-      bool changed = ImGui::DragScalarN("Axis", ImGuiDataType_Double, fields.axis.data(), 3, 0.01f,
-                                        nullptr, nullptr, "%.3f");
+      bool changed = drag_vec3("Axis", fields.axis, 0.01f, 3);
       fields.editing = ImGui::IsItemActive() ? ImGui::GetActiveID() : 0;
       const bool axis_done = ImGui::IsItemDeactivatedAfterEdit();
       ImGui::SetNextItemWidth(-60);
@@ -365,8 +403,24 @@ void handles_section(Editor& e) {
           e.live_edit();
         }
       }
-      if (axis_done || angle_done) e.commit("Rotate '" + h.name + "'");
+      ImGui::SetNextItemWidth(-60);
+      const bool euler_changed =
+          drag_vec3("Euler", fields.euler_deg, 0.5f, 2, &amin, &amax, ImGuiSliderFlags_AlwaysClamp);
+      if (ImGui::IsItemActive()) fields.editing = ImGui::GetActiveID();
+      if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("Euler XYZ in degrees: X first, then Y, then Z. One angle alone keeps "
+                          "whole turns (720 is two turns about that axis).");
+      const bool euler_done = ImGui::IsItemDeactivatedAfterEdit();
+      if (euler_changed && fields.euler_deg.allFinite()) {
+        const Vec3 turn = turn_of_euler_xyz(fields.euler_deg, h.pose.whole_turn());
+        if (turn != h.pose.whole_turn()) {
+          h.pose.set_turn(turn);
+          e.live_edit();
+        }
+      }
+      if (axis_done || angle_done || euler_done) e.commit("Rotate '" + h.name + "'");
     }
+    if (h.mode != HandleMode::Spring) pivot_row(e, s.active, speed);
   }
   const float w = (ImGui::GetContentRegionAvail().x - 2 * ImGui::GetStyle().ItemSpacing.x) / 3;
   if (ImGui::Button("Reset", ImVec2(w, 0))) e.reset_handle(s.active);
