@@ -5,6 +5,7 @@
 #include <sys/stat.h>
 
 #include <filesystem>
+#include <sstream>
 #include <nlohmann/json.hpp>
 
 #include "primo/mesh_io.h"
@@ -245,4 +246,74 @@ TEST_F(DeformCli, GenerateLoopSubdividesTrianglesAndRefusesQuads) {
   EXPECT_EQ(primo::load_mesh(dir + "/fine.obj").n_faces(), size_t(16 * 8 * 6 * 2));
   expect_error("generate loop " + dir + "/cube.obj -o " + dir + "/cube-fine.obj", "triangle",
                dir + "/cube-fine.obj");
+}
+
+namespace {
+
+const char* kTexturedCube = R"(mtllib cube.mtl
+v 0 0 0
+v 1 0 0
+v 1 1 0
+v 0 1 0
+v 0 0 1
+v 1 0 1
+v 1 1 1
+v 0 1 1
+vt 0 0
+vt 1 0
+vt 1 1
+vt 0 1
+vn 0 0 -1
+vn 0 0 1
+vn 0 -1 0
+vn 1 0 0
+vn 0 1 0
+vn -1 0 0
+usemtl skin
+f 1/1/1 4/4/1 3/3/1 2/2/1
+f 5/1/2 6/2/2 7/3/2 8/4/2
+g sides
+f 1/1/3 2/2/3 6/3/3 5/4/3
+f 2/1/4 3/2/4 7/3/4 6/4/4
+f 3/1/5 4/2/5 8/3/5 7/4/5
+f 4/1/6 1/2/6 5/3/6 8/4/6
+)";
+
+// The file without its `v` and `vn` lines, and the `v` lines' numbers.
+std::pair<std::string, std::vector<double>> split_positions(const std::string& text) {
+  std::string rest;
+  std::vector<double> positions;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind("vn ", 0) == 0) continue;
+    if (line.rfind("v ", 0) != 0) {
+      rest += line + "\n";
+      continue;
+    }
+    std::istringstream words(line.substr(2));
+    for (std::string word; words >> word;) positions.push_back(std::stod(word));
+  }
+  return {rest, positions};
+}
+
+}  // namespace
+
+TEST_F(DeformCli, ObjAttributesSurviveAPose) {
+  write_text(dir + "/textured.obj", kTexturedCube);
+  write_text(dir + "/cube.mtl", "newmtl skin\nKd 1 1 1\n");
+  write_text(dir + "/still.json", R"({"format": "primo-scenario/1", "mesh": "textured.obj",
+    "handles": [{"name": "bottom", "select": {"faces": [0]}, "fix": "all"}]})");
+  write_text(dir + "/posed.json", scenario_json("textured.obj"));
+  const CommandResult still = run_primo("deform " + dir + "/still.json -o " + dir + "/still.obj");
+  ASSERT_EQ(still.exit_code, 0) << still.err;
+  const auto input = split_positions(kTexturedCube);
+  const auto unposed = split_positions(read_text(dir + "/still.obj"));
+  EXPECT_EQ(unposed.first, input.first);    // byte for byte
+  EXPECT_EQ(unposed.second, input.second);  // bit for bit
+
+  const CommandResult posed = run_primo("deform " + dir + "/posed.json -o " + dir + "/posed.obj");
+  ASSERT_EQ(posed.exit_code, 0) << posed.err;
+  const auto moved = split_positions(read_text(dir + "/posed.obj"));
+  EXPECT_EQ(moved.first, input.first);
+  EXPECT_NE(moved.second, input.second);
 }

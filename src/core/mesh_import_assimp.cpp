@@ -47,6 +47,7 @@
 #include "gltf_buffer_files.h"
 #include "gltf_limits.h"
 #include "mesh_export_gltf.h"
+#include "scene_attributes.h"
 #include "scene_reader_process.h"
 #include "scene_signature.h"
 #include "threemf_checks.h"
@@ -216,7 +217,8 @@ struct Instance {
 
 class SceneBaker {
  public:
-  SceneBaker(const aiScene& scene, const std::string& path) : scene_(scene), path_(path) {}
+  SceneBaker(const aiScene& scene, const std::string& path)
+      : scene_(scene), path_(path), attributes_(scene, path) {}
 
   SceneSoup bake() {
     if (!scene_.mRootNode) fail(path_, "cannot read: the " + format_name(path_) + " scene has no nodes");
@@ -227,6 +229,7 @@ class SceneBaker {
       fail(path_, what);
     }
     SceneSoup out;
+    soup_.attributes = attributes_.finish(dropped_);
     out.note = note();
     if (instances_.size() > 1) out.parts = parts();
     out.soup = std::move(soup_);
@@ -317,7 +320,9 @@ class SceneBaker {
     const bool mirrored = transform.topLeftCorner<3, 3>().determinant() < 0;
     Instance instance{quoted_name(node.mName), soup_.faces.size(), faces.size()};
     std::vector<int> distinct;
+    std::vector<unsigned> ai_corners;
     for (auto& face : faces) {
+      ai_corners.assign(face.begin(), face.end());
       for (int& index : face) index = index_of[size_t(index)];
       // A face with fewer than 3 distinct corners once copies are merged has no area: exporters
       // leave such collapsed triangles behind, and they are dropped (and counted) here.
@@ -328,15 +333,16 @@ class SceneBaker {
         --instance.n_faces;
         continue;
       }
-      if (mirrored) std::reverse(face.begin() + 1, face.end());
+      if (mirrored) {
+        std::reverse(face.begin() + 1, face.end());
+        std::reverse(ai_corners.begin() + 1, ai_corners.end());
+      }
+      attributes_.add_face(mesh, ai_corners, face);
       soup_.faces.push_back(std::move(face));
     }
     instances_.push_back(instance);
 
     // What the soup leaves out of this mesh.
-    if (!primo_file && mesh.HasNormals()) normals_ = true;
-    if (mesh.HasTextureCoords(0)) uvs_ = true;
-    if (mesh.HasVertexColors(0)) colors_ = true;
     if (mesh.mNumBones > 0) skins_.emplace_back(quoted_name(node.mName), mesh.mNumBones);
     morph_targets_ += mesh.mNumAnimMeshes;
   }
@@ -366,21 +372,8 @@ class SceneBaker {
     if (any_foreign_faces_ && format == "glTF")
       said.push_back("glTF stores triangles only, so the faces are triangles");
 
-    std::vector<std::string> ignored;
-    size_t materials = 0;
-    for (unsigned m = 0; m < scene_.mNumMaterials; ++m) {
-      const aiMaterial* material = scene_.mMaterials[m];
-      // Assimp adds a material of its own (unnamed, or DefaultMaterial) when a file has none.
-      if (!material) continue;
-      const aiString name = material->GetName();
-      if (name.length > 0 && name != aiString(AI_DEFAULT_MATERIAL_NAME)) ++materials;
-    }
-    if (materials) ignored.push_back(plural(materials, "material", "materials"));
-    if (scene_.mNumTextures)
-      ignored.push_back(plural(scene_.mNumTextures, "embedded texture", "embedded textures"));
-    if (uvs_) ignored.push_back("UVs");
-    if (normals_) ignored.push_back("normals");
-    if (colors_) ignored.push_back("vertex colors");
+    // UVs, normals, colours and materials are kept (SceneAttributeCollector).
+    std::vector<std::string> ignored = dropped_;
     for (size_t s = 0; s < skins_.size() && s < 3; ++s)
       ignored.push_back("the skin of " + skins_[s].first + " (" +
                         plural(skins_[s].second, "bone", "bones") + "; bind pose used)");
@@ -423,7 +416,8 @@ class SceneBaker {
   std::vector<Instance> instances_;
   size_t input_vertices_ = 0;
   size_t points_ = 0, lines_ = 0, unused_meshes_ = 0, morph_targets_ = 0, collapsed_faces_ = 0;
-  bool normals_ = false, uvs_ = false, colors_ = false;
+  SceneAttributeCollector attributes_;
+  std::vector<std::string> dropped_;  // attributes that could not be kept
   bool any_foreign_faces_ = false;  // faces of meshes PriMo did not write
   bool face_sizes_mismatch_ = false;
   std::vector<std::pair<std::string, size_t>> skins_;
@@ -555,9 +549,12 @@ bool is_scene_file(const std::string& path) {
 }
 
 LoadedMesh load_mesh_noted(const std::string& path) {
-  if (!is_scene_file(path)) return {load_mesh(path), ""};
-  const detail::SceneSoup scene = detail::read_scene_file(path);
-  return {detail::mesh_from_scene_soup(scene, path), scene.note};
+  if (!is_scene_file(path)) return detail::load_polygon_file(path);
+  detail::SceneSoup scene = detail::read_scene_file(path);
+  LoadedMesh loaded{detail::mesh_from_scene_soup(scene, path), scene.note,
+                    std::move(scene.soup.attributes)};
+  check_attributes(loaded.mesh, loaded.attributes, path + ": cannot read");
+  return loaded;
 }
 
 }  // namespace primo
