@@ -70,7 +70,7 @@ void append_u32(std::string& out, uint32_t value) {
 }
 
 // "4x2928" or "3x10 4x5 3x1": the face sizes in file order, as runs.
-std::string face_size_runs(const Mesh& mesh) {
+std::string face_size_runs(const std::vector<int>& sizes) {
   std::string out;
   int size = 0, count = 0;
   const auto flush = [&] {
@@ -78,8 +78,7 @@ std::string face_size_runs(const Mesh& mesh) {
     if (!out.empty()) out += ' ';
     out += std::to_string(size) + "x" + std::to_string(count);
   };
-  for (auto f : mesh.faces()) {
-    const int n = int(f.valence());
+  for (const int n : sizes) {
     if (n != size) {
       flush();
       size = n;
@@ -89,6 +88,13 @@ std::string face_size_runs(const Mesh& mesh) {
   }
   flush();
   return out;
+}
+
+std::string face_size_runs(const Mesh& mesh) {
+  std::vector<int> sizes;
+  sizes.reserve(mesh.n_faces());
+  for (auto f : mesh.faces()) sizes.push_back(int(f.valence()));
+  return face_size_runs(sizes);
 }
 
 // Area-weighted vertex normals (the Newell normal of each face, so n-gons count by their area),
@@ -339,8 +345,6 @@ std::string gltf_bytes(const Mesh& mesh, const MeshAttributes& attributes, bool 
   Json json;
   json["asset"] = {{"version", "2.0"}, {"generator", "PriMo"}};
   json["scene"] = 0;
-  json["scenes"] = Json::array({{{"nodes", {0}}}});
-  json["nodes"] = Json::array({{{"name", name.empty() ? "mesh" : name}, {"mesh", 0}}});
   BufferWriter out(json);
   Json vertex_attributes;
   vertex_attributes["POSITION"] = out.accessor(positions, kFloat, "VEC3", 3, kArrayBuffer);
@@ -354,30 +358,44 @@ std::string gltf_bytes(const Mesh& mesh, const MeshAttributes& attributes, bool 
     vertex_attributes["COLOR_" + std::to_string(s)] =
         out.accessor(colors[s], kFloat, "VEC4", 4, kArrayBuffer);
 
-  // 2. One primitive per material, in the order the faces first use them; fans as above.
+  // 2. One primitive per material, in the order the faces first use them; fans as above. Each
+  // is a mesh of its own node, whose extras give its face sizes and say that its vertex copies
+  // are to be merged by position, so that PriMo reads the polygons back.
   const std::vector<int> first = first_corners(mesh);
   std::vector<int> groups;
   std::map<int, std::vector<uint32_t>> indices;
+  std::map<int, std::vector<int>> sizes;
   for (auto f : mesh.faces()) {
     const size_t face = size_t(f.idx());
     const int material = face < attributes.face_material.size() ? attributes.face_material[face] : -1;
     if (!indices.count(material)) groups.push_back(material);
     std::vector<uint32_t>& fans = indices[material];
     const size_t begin = size_t(first[face]), size = size_t(first[face + 1]) - begin;
+    sizes[material].push_back(int(size));
     for (size_t k = 1; k + 1 < size; ++k)
       fans.insert(fans.end(), {corner_vertex[begin], corner_vertex[begin + k],
                                corner_vertex[begin + k + 1]});
   }
-  Json primitives = Json::array();
+  const std::string mesh_name = name.empty() ? "mesh" : name;
+  json["meshes"] = Json::array();
+  json["nodes"] = Json::array();
+  json["scenes"] = Json::array({{{"nodes", Json::array()}}});
   for (int material : groups) {
     Json primitive = {{"attributes", vertex_attributes},
                       {"indices", out.accessor(indices[material], kUnsignedInt, "SCALAR", 1,
                                                kElementArrayBuffer)},
                       {"mode", kTriangles}};
     if (material >= 0) primitive["material"] = material;
-    primitives.push_back(primitive);
+    const std::string part =
+        groups.size() == 1 || material < 0 ? mesh_name
+                                           : mesh_name + "-" + attributes.materials[size_t(material)].name;
+    json["scenes"][0]["nodes"].push_back(json["nodes"].size());
+    json["nodes"].push_back({{"name", part},
+                             {"mesh", json["meshes"].size()},
+                             {"extras", {{kFaceSizesKey, face_size_runs(sizes[material])},
+                                         {kVertexCopiesKey, "merge by position"}}}});
+    json["meshes"].push_back({{"name", part}, {"primitives", Json::array({primitive})}});
   }
-  json["meshes"] = Json::array({{{"name", name.empty() ? "mesh" : name}, {"primitives", primitives}}});
 
   // 3. Materials, a texture per image, and the images.
   if (!attributes.materials.empty()) {

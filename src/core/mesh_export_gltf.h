@@ -23,17 +23,20 @@ std::string gltf_bytes(const Mesh& mesh, bool binary, const std::string& name,
 // an OBJ's text) the file is the one above. With them, every face corner becomes a glTF vertex
 // of its own where its UVs, colours or normal slot differ (corners that agree share one), the
 // faces form one primitive per material (in the order the materials are first used, faces in
-// file order within each), and the primitives share TEXCOORD_n (v flipped to glTF's downward
+// file order within each), each the mesh of a node of its own with its face sizes and
+// kVertexCopiesKey in the node's extras, and the primitives share TEXCOORD_n (v flipped to glTF's downward
 // v), COLOR_n (float RGBA), NORMAL (corner_normals, or the vertex normals above when the file
 // had none) and POSITION. Materials are written with their factors and textures; images are
 // embedded in a GLB (a file the source refers to is read now), and in a .gltf embedded as a
-// data URI when the source embedded them, else referred to relative to `path`'s folder. Such a
-// file carries no face sizes: read back, it is a glTF like any other. Throws Error "<path>: ..."
+// data URI when the source embedded them, else referred to relative to `path`'s folder. Throws Error "<path>: ..."
 // as above, and when an image file a GLB must embed cannot be read.
 std::string gltf_bytes(const Mesh& mesh, const MeshAttributes& attributes, bool binary,
                        const std::string& name, const std::string& path);
 
 // The name of the node extras key above.
 inline constexpr const char* kFaceSizesKey = "primo_face_sizes";
+// A node extras key of files written with attributes: its vertices are copies per corner,
+// merged by position when read back (as in files of other tools), its fans joined as above.
+inline constexpr const char* kVertexCopiesKey = "primo_vertex_copies";
 
 }  // namespace primo::detail

@@ -11,7 +11,8 @@
 //    into pieces. Vertices are merged when their transformed positions are bitwise equal, in
 //    order of first appearance. Split copies come from the same stored coordinates, so they are
 //    exactly equal; distinct vertices are never merged however close. A file written by PriMo
-//    (its node has the extras key primo_face_sizes) is not merged: its vertices are the mesh's.
+//    (its node has the extras key primo_face_sizes) is not merged: its vertices are the mesh's,
+//    unless it was written with attributes (primo_vertex_copies: a vertex per distinct corner).
 // 4. glTF holds triangles only. When a node carries PriMo's face sizes and its triangles are
 //    exactly the fans PriMo writes, the fans are joined back into the original faces.
 // 5. What was joined, merged and left out goes into a one-line note.
@@ -263,9 +264,12 @@ class SceneBaker {
   }
 
   void add_mesh(const aiNode& node, const aiMesh& mesh, const Eigen::Matrix4d& transform) {
-    aiString face_sizes;
+    aiString face_sizes, copies;
     const bool primo_file =
         node.mMetaData && node.mMetaData->Get(std::string(kFaceSizesKey), face_sizes);
+    // A file PriMo wrote with attributes has a vertex per distinct corner: merged by position.
+    const bool keep_vertices =
+        primo_file && !node.mMetaData->Get(std::string(kVertexCopiesKey), copies);
     if (!mesh.mVertices && mesh.mNumVertices > 0)
       fail(path_, "cannot read: mesh " + quoted_name(mesh.mName) + " has no vertex positions");
     if (soup_.points.size() + mesh.mNumVertices > size_t(INT_MAX))
@@ -278,7 +282,7 @@ class SceneBaker {
       const Eigen::Vector4d h = transform * Eigen::Vector4d(a.x, a.y, a.z, 1.0);
       const Vec3 p = h[3] == 1.0 ? Vec3(h.head<3>()) : Vec3(h.head<3>() / h[3]);
       ++input_vertices_;
-      if (primo_file) {
+      if (keep_vertices) {
         index_of[v] = int(soup_.points.size());
         soup_.points.push_back(p);
         continue;

@@ -86,6 +86,7 @@ int SceneAttributeCollector::image_of(const aiString& path) {
       images_[uri] = -1;
       return -1;
     }
+    image.name.clear();  // "*0" names no image
     image.mime_type = mime_type_of(embedded->achFormatHint);
     image.bytes.assign(reinterpret_cast<const char*>(embedded->pcData), embedded->mWidth);
     if (embedded->mFilename.length > 0) image.name = fs::path(embedded->mFilename.C_Str()).stem().string();
