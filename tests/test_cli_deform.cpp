@@ -250,35 +250,6 @@ TEST_F(DeformCli, GenerateLoopSubdividesTrianglesAndRefusesQuads) {
 
 namespace {
 
-const char* kTexturedCube = R"(mtllib cube.mtl
-v 0 0 0
-v 1 0 0
-v 1 1 0
-v 0 1 0
-v 0 0 1
-v 1 0 1
-v 1 1 1
-v 0 1 1
-vt 0 0
-vt 1 0
-vt 1 1
-vt 0 1
-vn 0 0 -1
-vn 0 0 1
-vn 0 -1 0
-vn 1 0 0
-vn 0 1 0
-vn -1 0 0
-usemtl skin
-f 1/1/1 4/4/1 3/3/1 2/2/1
-f 5/1/2 6/2/2 7/3/2 8/4/2
-g sides
-f 1/1/3 2/2/3 6/3/3 5/4/3
-f 2/1/4 3/2/4 7/3/4 6/4/4
-f 3/1/5 4/2/5 8/3/5 7/4/5
-f 4/1/6 1/2/6 5/3/6 8/4/6
-)";
-
 // The file without its `v` and `vn` lines, and the `v` lines' numbers.
 std::pair<std::string, std::vector<double>> split_positions(const std::string& text) {
   std::string rest;
@@ -299,14 +270,16 @@ std::pair<std::string, std::vector<double>> split_positions(const std::string& t
 }  // namespace
 
 TEST_F(DeformCli, ObjAttributesSurviveAPose) {
-  write_text(dir + "/textured.obj", kTexturedCube);
-  write_text(dir + "/cube.mtl", "newmtl skin\nKd 1 1 1\n");
+  // The textured cube of tests/data/textured_cube: UVs, normals, materials, groups.
+  const std::string cube = read_text(primo::test::source_path("tests/data/textured_cube/cube.obj"));
+  write_text(dir + "/textured.obj", cube);
+  write_text(dir + "/cube.mtl", read_text(primo::test::source_path("tests/data/textured_cube/cube.mtl")));
   write_text(dir + "/still.json", R"({"format": "primo-scenario/1", "mesh": "textured.obj",
     "handles": [{"name": "bottom", "select": {"faces": [0]}, "fix": "all"}]})");
   write_text(dir + "/posed.json", scenario_json("textured.obj"));
   const CommandResult still = run_primo("deform " + dir + "/still.json -o " + dir + "/still.obj");
   ASSERT_EQ(still.exit_code, 0) << still.err;
-  const auto input = split_positions(kTexturedCube);
+  const auto input = split_positions(cube);
   const auto unposed = split_positions(read_text(dir + "/still.obj"));
   EXPECT_EQ(unposed.first, input.first);    // byte for byte
   EXPECT_EQ(unposed.second, input.second);  // bit for bit

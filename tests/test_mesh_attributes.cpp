@@ -3,11 +3,10 @@
 // glTF and FBX characters exported as glTF keep their UVs, materials and textures (read back
 // through Assimp), and bad attribute data is refused with the file named.
 
+#include <assimp/scene.h>
 #include <gtest/gtest.h>
 
 #include <assimp/Importer.hpp>
-#include <assimp/scene.h>
-
 #include <charconv>
 #include <cmath>
 #include <filesystem>
@@ -27,45 +26,12 @@ using primo::test::write_text;
 
 namespace {
 
-// A unit cube with a UV per corner of its net, one normal per face (hard edges), two
-// materials, groups and smoothing statements.
-const char* kTexturedCube = R"(# a textured cube
-mtllib cube.mtl
-o Cube
-v 0 0 0
-v 1 0 0
-v 1 1 0
-v 0 1 0
-v 0 0 1
-v 1 0 1
-v 1 1 1
-v 0 1 1 0.5 0.25 1
-vt 0 0
-vt 1 0
-vt 1 1
-vt 0.0 1.000
-vn 0 0 -1
-vn 0 0 1
-vn 0 -1 0
-vn 1 0 0
-vn 0 1 0
-vn -1 0 0
-g bottom
-usemtl red
-s off
-f 1/1/1 4/4/1 3/3/1 2/2/1
-usemtl blue
-f 5/1/2 6/2/2 7/3/2 8/4/2
-g sides
-s 1
-f 1/1/3 2/2/3 6/3/3 5/4/3
-f 2/1/4 3/2/4 7/3/4 6/4/4
-usemtl red
-f 3/1/5 4/2/5 8/3/5 7/4/5
-f 4/1/6 1/2/6 5/3/6 8/4/6
-)";
-
-const char* kCubeLibrary = "newmtl red\nKd 1 0 0\nmap_Kd red.png\nnewmtl blue\nKd 0 0 1\n";
+// A unit cube (tests/data/textured_cube) with a UV per corner of its net, one normal per face
+// (hard edges), two materials in its library, groups and smoothing statements, and a vertex
+// colour after one vertex's coordinates.
+std::string textured_cube_text() {
+  return read_text(primo::test::source_path("tests/data/textured_cube/cube.obj"));
+}
 
 std::vector<std::string> lines_of(const std::string& text) {
   std::vector<std::string> lines;
@@ -97,8 +63,9 @@ WrittenCube textured_cube() {
   WrittenCube cube{temp_dir(), "", ""};
   cube.input = cube.folder + "/cube.obj";
   cube.output = cube.folder + "/posed.obj";
-  write_text(cube.input, kTexturedCube);
-  write_text(cube.folder + "/cube.mtl", kCubeLibrary);
+  write_text(cube.input, textured_cube_text());
+  write_text(cube.folder + "/cube.mtl",
+             read_text(primo::test::source_path("tests/data/textured_cube/cube.mtl")));
   return cube;
 }
 
@@ -124,7 +91,8 @@ TEST(MeshAttributesObj, UnposedWriteChangesOnlyVertexAndNormalLines) {
   const WrittenCube cube = textured_cube();
   const primo::LoadedMesh loaded = primo::load_mesh_noted(cube.input);
   primo::save_mesh(loaded.mesh, loaded.attributes, cube.output);
-  const std::vector<std::string> in = lines_of(kTexturedCube), out = lines_of(read_text(cube.output));
+  const std::vector<std::string> in = lines_of(textured_cube_text()),
+                                 out = lines_of(read_text(cube.output));
   ASSERT_EQ(in.size(), out.size());
   for (size_t i = 0; i < in.size(); ++i) {
     if (starts_with(in[i], "v ")) {
@@ -149,7 +117,8 @@ TEST(MeshAttributesObj, RotatedCubeNormalsRotateAndStayHard) {
     loaded.mesh.set_point(v, primo::Vec3(-p.y(), p.x(), p.z()));
   }
   primo::save_mesh(loaded.mesh, loaded.attributes, cube.output);
-  const std::vector<std::string> in = lines_of(kTexturedCube), out = lines_of(read_text(cube.output));
+  const std::vector<std::string> in = lines_of(textured_cube_text()),
+                                 out = lines_of(read_text(cube.output));
   int normals = 0;
   for (size_t i = 0; i < in.size(); ++i) {
     if (!starts_with(in[i], "vn ")) continue;
@@ -172,8 +141,8 @@ TEST(MeshAttributesObj, SmoothNormalSlotAveragesItsFaces) {
   const primo::LoadedMesh loaded = primo::load_mesh_noted(folder + "/fold.obj");
   const std::vector<primo::Vec3> normals = primo::corner_normals(loaded.mesh, loaded.attributes);
   ASSERT_EQ(normals.size(), 3u);
-  EXPECT_NEAR(normals[1].z(), 1.0, 1e-15);   // the first face alone
-  EXPECT_NEAR(normals[2].y(), 1.0, 1e-15);   // the second face alone
+  EXPECT_NEAR(normals[1].z(), 1.0, 1e-15);             // the first face alone
+  EXPECT_NEAR(normals[2].y(), 1.0, 1e-15);             // the second face alone
   EXPECT_NEAR(normals[0].y(), std::sqrt(0.5), 1e-15);  // both, equal areas
   EXPECT_NEAR(normals[0].z(), std::sqrt(0.5), 1e-15);
 }
@@ -189,7 +158,8 @@ TEST(MeshAttributesObj, LibraryIsReachedFromAnotherFolder) {
 }
 
 TEST(MeshAttributesObj, ObjFromAScenePairsCornersWithUvsNormalsAndMaterials) {
-  const primo::LoadedMesh box = primo::load_mesh_noted(primo::test::source_path("tests/data/scenes/BoxTextured.glb"));
+  const primo::LoadedMesh box =
+      primo::load_mesh_noted(primo::test::source_path("tests/data/scenes/BoxTextured.glb"));
   const std::string path = temp_dir() + "/box.obj";
   primo::save_mesh(box.mesh, box.attributes, path);
   const primo::LoadedMesh again = primo::load_mesh_noted(path);
@@ -226,7 +196,8 @@ TEST(MeshAttributesObj, BadAttributeDataIsRefusedWithTheFileNamed) {
       folder + "/vn.obj", "normal index 2 is out of range");
   write_text(folder + "/lib.obj", "mtllib missing.mtl\n" + quad + "usemtl skin\nf 1 2 3 4\n");
   const primo::LoadedMesh loaded = primo::load_mesh_noted(folder + "/lib.obj");
-  EXPECT_NE(loaded.note.find(folder + "/lib.obj: materials keep their names only"), std::string::npos)
+  EXPECT_NE(loaded.note.find(folder + "/lib.obj: materials keep their names only"),
+            std::string::npos)
       << loaded.note;
   EXPECT_NE(loaded.note.find("missing.mtl"), std::string::npos) << loaded.note;
   ASSERT_EQ(loaded.attributes.materials.size(), 1u);
@@ -242,8 +213,51 @@ TEST(MeshAttributesCheck, AttributesOfAnotherMeshAreRefused) {
                                      cube.output, "texture coordinate set 0 has 23 corners");
   wrong = loaded.attributes;
   wrong.face_material[2] = 7;
-  primo::test::expect_one_line_error([&] { primo::save_mesh(loaded.mesh, wrong, cube.output + ".gltf"); },
-                                     cube.output + ".gltf", "face 2 refers to material 7 of 2");
+  primo::test::expect_one_line_error(
+      [&] { primo::save_mesh(loaded.mesh, wrong, cube.output + ".gltf"); }, cube.output + ".gltf",
+      "face 2 refers to material 7 of 2");
+}
+
+TEST(MeshAttributesGltf, ColoursAndTwoUvSetsComeBackPerCorner) {
+  const WrittenCube cube = textured_cube();
+  primo::LoadedMesh loaded = primo::load_mesh_noted(cube.input);
+  primo::MeshAttributes& a = loaded.attributes;
+  a.obj_text.clear();
+  // A colour per vertex (corners of one vertex share it) and a second UV set, per corner.
+  primo::CornerValues<4> colors;
+  primo::CornerValues<2> second;
+  for (auto f : loaded.mesh.faces())
+    for (auto v : f.vertices()) {
+      colors.corner.push_back(v.idx());
+      second.corner.push_back(int(second.values.size()));
+      second.values.push_back({0.125 * double(second.values.size() % 8), 0.5});
+    }
+  for (int v = 0; v < 8; ++v) colors.values.push_back({v / 8.0, 1 - v / 8.0, 0.25, 1});
+  a.colors.push_back(colors);
+  a.texcoords.push_back(second);
+  const std::string output = cube.folder + "/coloured.glb";
+  primo::test::expect_one_line_error([&] { primo::save_mesh(loaded.mesh, a, output); }, output,
+                                     "a GLB embeds its images, and " + cube.folder + "/red.png");
+  write_text(cube.folder + "/red.png", "\x89PNG stand-in");
+  primo::save_mesh(loaded.mesh, a, output);
+  const primo::LoadedMesh back = primo::load_mesh_noted(output);
+  ASSERT_EQ(back.attributes.colors.size(), 1u);
+  ASSERT_EQ(back.attributes.texcoords.size(), 2u);
+  // Two materials: faces come back grouped by material (red: 0, 4, 5; blue: 1, 2, 3).
+  const std::vector<size_t> order = {0, 4, 5, 1, 2, 3};
+  const std::vector<int> first = primo::first_corners(loaded.mesh);
+  size_t c = 0;
+  for (size_t face : order)
+    for (int k = first[face]; k < first[face + 1]; ++k, ++c) {
+      const auto& color = back.attributes.colors[0];
+      EXPECT_EQ(color.values[size_t(color.corner[c])],
+                colors.values[size_t(colors.corner[size_t(k)])]);
+      const auto& uv = back.attributes.texcoords[1];
+      for (int i = 0; i < 2; ++i)
+        EXPECT_NEAR(uv.values[size_t(uv.corner[c])][size_t(i)],
+                    second.values[size_t(second.corner[size_t(k)])][size_t(i)], 1e-7);
+    }
+  EXPECT_EQ(back.attributes.face_material, (std::vector<int>{0, 0, 0, 1, 1, 1}));
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -393,7 +407,8 @@ TEST(MeshAttributesGltf, TexturedFbxKeepsUvsAndMaterials) {
 void expect_posed_export_keeps_uvs_and_materials(const std::string& source,
                                                  const std::string& scenario,
                                                  const std::string& output) {
-  const primo::test::CommandResult r = primo::test::run_primo("deform " + scenario + " -o " + output);
+  const primo::test::CommandResult r =
+      primo::test::run_primo("deform " + scenario + " -o " + output);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const primo::LoadedMesh rest = primo::load_mesh_noted(source);
   const primo::LoadedMesh posed = primo::load_mesh_noted(output);
@@ -409,7 +424,8 @@ void expect_posed_export_keeps_uvs_and_materials(const std::string& source,
   ASSERT_EQ(a.corner.size(), b.corner.size());
   for (size_t c = 0; c < a.corner.size(); ++c)
     for (int k = 0; k < 2; ++k)
-      EXPECT_NEAR(a.values[size_t(a.corner[c])][size_t(k)], b.values[size_t(b.corner[c])][size_t(k)], 1e-6)
+      EXPECT_NEAR(a.values[size_t(a.corner[c])][size_t(k)],
+                  b.values[size_t(b.corner[c])][size_t(k)], 1e-6)
           << "corner " << c;
   ASSERT_EQ(posed.attributes.materials.size(), rest.attributes.materials.size());
   for (size_t m = 0; m < rest.attributes.materials.size(); ++m) {

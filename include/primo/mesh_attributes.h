@@ -50,8 +50,8 @@ struct MeshMaterial {
   bool double_sided = false;
   std::string alpha_mode = "OPAQUE";  // OPAQUE, MASK or BLEND
   double alpha_cutoff = 0.5;
-  MaterialTexture base_color_texture, metallic_roughness_texture, normal_texture,
-      occlusion_texture, emissive_texture;
+  MaterialTexture base_color_texture, metallic_roughness_texture, normal_texture, occlusion_texture,
+      emissive_texture;
 };
 
 struct MeshAttributes {

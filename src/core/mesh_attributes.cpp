@@ -70,8 +70,7 @@ void check_corner_values(const CornerValues<N>& set, const char* kind, size_t in
                        std::to_string(set.corner[c]) + " of " + std::to_string(set.values.size()));
   for (size_t v = 0; v < set.values.size(); ++v)
     for (double x : set.values[v])
-      if (!std::isfinite(x))
-        fail(source, name + ": value " + std::to_string(v) + " is not finite");
+      if (!std::isfinite(x)) fail(source, name + ": value " + std::to_string(v) + " is not finite");
 }
 
 }  // namespace

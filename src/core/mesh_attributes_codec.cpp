@@ -31,7 +31,8 @@ bool from_binary(const Json& json, std::vector<T>& values) {
 template <int N>
 Json corner_values_json(const std::vector<CornerValues<N>>& sets) {
   Json out = Json::array();
-  for (const auto& set : sets) out.push_back({{"values", binary_of(set.values)}, {"corner", binary_of(set.corner)}});
+  for (const auto& set : sets)
+    out.push_back({{"values", binary_of(set.values)}, {"corner", binary_of(set.corner)}});
   return out;
 }
 
@@ -59,26 +60,27 @@ void texture_from(const Json& json, MaterialTexture& texture) {
 std::string encode_attributes(const MeshAttributes& a) {
   Json materials = Json::array();
   for (const MeshMaterial& m : a.materials)
-    materials.push_back({{"name", m.name},
-                         {"base_color", m.base_color},
-                         {"metallic", m.metallic},
-                         {"roughness", m.roughness},
-                         {"emissive", m.emissive},
-                         {"double_sided", m.double_sided},
-                         {"alpha_mode", m.alpha_mode},
-                         {"alpha_cutoff", m.alpha_cutoff},
-                         {"textures",
-                          {texture_json(m.base_color_texture),
-                           texture_json(m.metallic_roughness_texture),
-                           texture_json(m.normal_texture), texture_json(m.occlusion_texture),
-                           texture_json(m.emissive_texture)}}});
+    materials.push_back(
+        {{"name", m.name},
+         {"base_color", m.base_color},
+         {"metallic", m.metallic},
+         {"roughness", m.roughness},
+         {"emissive", m.emissive},
+         {"double_sided", m.double_sided},
+         {"alpha_mode", m.alpha_mode},
+         {"alpha_cutoff", m.alpha_cutoff},
+         {"textures",
+          {texture_json(m.base_color_texture), texture_json(m.metallic_roughness_texture),
+           texture_json(m.normal_texture), texture_json(m.occlusion_texture),
+           texture_json(m.emissive_texture)}}});
   Json images = Json::array();
   for (const MeshImage& i : a.images)
-    images.push_back({{"name", i.name},
-                      {"uri", i.uri},
-                      {"folder", i.folder},
-                      {"mime_type", i.mime_type},
-                      {"bytes", Json::binary(std::vector<uint8_t>(i.bytes.begin(), i.bytes.end()))}});
+    images.push_back(
+        {{"name", i.name},
+         {"uri", i.uri},
+         {"folder", i.folder},
+         {"mime_type", i.mime_type},
+         {"bytes", Json::binary(std::vector<uint8_t>(i.bytes.begin(), i.bytes.end()))}});
   const Json json = {{"texcoords", corner_values_json(a.texcoords)},
                      {"colors", corner_values_json(a.colors)},
                      {"normal_corner", binary_of(a.normal_corner)},

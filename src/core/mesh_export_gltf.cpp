@@ -412,7 +412,13 @@ std::string gltf_bytes(const Mesh& mesh, const MeshAttributes& attributes, bool 
       if (!image.name.empty()) image_json["name"] = image.name;
       const std::string file = (std::filesystem::path(image.folder) / image.uri).string();
       if (binary) {
-        const std::string bytes = image.bytes.empty() ? read_input_file(file) : image.bytes;
+        std::string bytes = image.bytes;
+        if (bytes.empty()) try {
+            bytes = read_input_file(file);
+          } catch (const Error& e) {
+            throw Error(path + ": cannot save: a GLB embeds its images, and " + e.what() +
+                        "; save as .gltf to refer to it instead");
+          }
         image_json["bufferView"] = out.view(bytes, 0);
         image_json["mimeType"] = mime_type_of(image);
       } else if (!image.bytes.empty()) {

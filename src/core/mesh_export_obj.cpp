@@ -42,8 +42,8 @@ std::vector<std::string_view> words_of(std::string_view statement) {
   std::vector<std::string_view> words;
   size_t i = 0;
   while (i < statement.size()) {
-    while (i < statement.size() && (is_blank(statement[i]) || statement[i] == '\\' ||
-                                    statement[i] == '\n'))
+    while (i < statement.size() &&
+           (is_blank(statement[i]) || statement[i] == '\\' || statement[i] == '\n'))
       ++i;
     const size_t begin = i;
     while (i < statement.size() && !is_blank(statement[i]) && statement[i] != '\\' &&

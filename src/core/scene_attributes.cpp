@@ -89,7 +89,8 @@ int SceneAttributeCollector::image_of(const aiString& path) {
     image.name.clear();  // "*0" names no image
     image.mime_type = mime_type_of(embedded->achFormatHint);
     image.bytes.assign(reinterpret_cast<const char*>(embedded->pcData), embedded->mWidth);
-    if (embedded->mFilename.length > 0) image.name = fs::path(embedded->mFilename.C_Str()).stem().string();
+    if (embedded->mFilename.length > 0)
+      image.name = fs::path(embedded->mFilename.C_Str()).stem().string();
   } else {
     image.uri = uri;
     image.folder = folder_;
@@ -128,7 +129,8 @@ int SceneAttributeCollector::material_of(unsigned ai_material) {
   if (m.Get(AI_MATKEY_COLOR_EMISSIVE, color) == aiReturn_SUCCESS)
     material.emissive = {color.r, color.g, color.b};
   int two_sided = 0;
-  if (m.Get(AI_MATKEY_TWOSIDED, two_sided) == aiReturn_SUCCESS) material.double_sided = two_sided != 0;
+  if (m.Get(AI_MATKEY_TWOSIDED, two_sided) == aiReturn_SUCCESS)
+    material.double_sided = two_sided != 0;
   aiString alpha_mode;
   if (m.Get(AI_MATKEY_GLTF_ALPHAMODE, alpha_mode) == aiReturn_SUCCESS)
     material.alpha_mode = alpha_mode.C_Str();
@@ -141,7 +143,8 @@ int SceneAttributeCollector::material_of(unsigned ai_material) {
         continue;
       slot.image = image_of(path);
       int set = 0;
-      if (m.Get(AI_MATKEY_UVWSRC(type, 0), set) == aiReturn_SUCCESS && set >= 0) slot.texcoord = set;
+      if (m.Get(AI_MATKEY_UVWSRC(type, 0), set) == aiReturn_SUCCESS && set >= 0)
+        slot.texcoord = set;
       return;
     }
   };
