@@ -5,6 +5,7 @@
 #include <sys/stat.h>
 
 #include <filesystem>
+#include <sstream>
 #include <nlohmann/json.hpp>
 
 #include "primo/mesh_io.h"
@@ -245,4 +246,47 @@ TEST_F(DeformCli, GenerateLoopSubdividesTrianglesAndRefusesQuads) {
   EXPECT_EQ(primo::load_mesh(dir + "/fine.obj").n_faces(), size_t(16 * 8 * 6 * 2));
   expect_error("generate loop " + dir + "/cube.obj -o " + dir + "/cube-fine.obj", "triangle",
                dir + "/cube-fine.obj");
+}
+
+namespace {
+
+// The file without its `v` and `vn` lines, and the `v` lines' numbers.
+std::pair<std::string, std::vector<double>> split_positions(const std::string& text) {
+  std::string rest;
+  std::vector<double> positions;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind("vn ", 0) == 0) continue;
+    if (line.rfind("v ", 0) != 0) {
+      rest += line + "\n";
+      continue;
+    }
+    std::istringstream words(line.substr(2));
+    for (std::string word; words >> word;) positions.push_back(std::stod(word));
+  }
+  return {rest, positions};
+}
+
+}  // namespace
+
+TEST_F(DeformCli, ObjAttributesSurviveAPose) {
+  // The textured cube of tests/data/textured_cube: UVs, normals, materials, groups.
+  const std::string cube = read_text(primo::test::source_path("tests/data/textured_cube/cube.obj"));
+  write_text(dir + "/textured.obj", cube);
+  write_text(dir + "/cube.mtl", read_text(primo::test::source_path("tests/data/textured_cube/cube.mtl")));
+  write_text(dir + "/still.json", R"({"format": "primo-scenario/1", "mesh": "textured.obj",
+    "handles": [{"name": "bottom", "select": {"faces": [0]}, "fix": "all"}]})");
+  write_text(dir + "/posed.json", scenario_json("textured.obj"));
+  const CommandResult still = run_primo("deform " + dir + "/still.json -o " + dir + "/still.obj");
+  ASSERT_EQ(still.exit_code, 0) << still.err;
+  const auto input = split_positions(cube);
+  const auto unposed = split_positions(read_text(dir + "/still.obj"));
+  EXPECT_EQ(unposed.first, input.first);    // byte for byte
+  EXPECT_EQ(unposed.second, input.second);  // bit for bit
+
+  const CommandResult posed = run_primo("deform " + dir + "/posed.json -o " + dir + "/posed.obj");
+  ASSERT_EQ(posed.exit_code, 0) << posed.err;
+  const auto moved = split_positions(read_text(dir + "/posed.obj"));
+  EXPECT_EQ(moved.first, input.first);
+  EXPECT_NE(moved.second, input.second);
 }

@@ -223,7 +223,7 @@ TEST(GltfExport, ReadOnlyFormatsAreRefusedBeforeAnythingIsWritten) {
 
 // --- Files written by other tools -----------------------------------------------------------
 
-TEST(SceneImport, ShippedFbxFromBlenderKeepsItsPolygonsAndSaysWhatItIgnored) {
+TEST(SceneImport, ShippedFbxFromBlenderKeepsItsPolygonsAndAttributesAndSaysWhatItIgnored) {
   const std::string path = source_path("assets/meshes/huesitos.fbx");
   const LoadedMesh loaded = load_mesh_noted(path);
   // 256 corner vertices in the file (Assimp's FBX reader gives each corner its own) merge into
@@ -232,9 +232,16 @@ TEST(SceneImport, ShippedFbxFromBlenderKeepsItsPolygonsAndSaysWhatItIgnored) {
   EXPECT_EQ(face_sizes(loaded.mesh), (std::map<int, int>{{3, 16}, {4, 52}}));
   EXPECT_EQ(pieces(loaded.mesh), 1);
   for (const char* said : {"merged 194 vertex copies", "256 -> 62", "the skin of 'Cylinder'",
-                           "9 bones", "1 animation", "1 material", "UVs", "normals", "1 camera",
-                           "1 light"})
+                           "9 bones", "1 animation", "1 camera", "1 light"})
     EXPECT_NE(loaded.note.find(said), std::string::npos) << said << " in " << loaded.note;
+  // Its UVs, normals and material are kept, per face corner, not ignored.
+  const std::string ignored = loaded.note.substr(loaded.note.find("ignored:"));
+  for (const char* kept : {"material", "UVs", "normals"})
+    EXPECT_EQ(ignored.find(kept), std::string::npos) << kept << " in " << loaded.note;
+  EXPECT_EQ(loaded.attributes.texcoords.size(), 1u);
+  EXPECT_EQ(loaded.attributes.texcoords[0].corner.size(), 256u);
+  EXPECT_GT(loaded.attributes.n_normals, 0);
+  EXPECT_EQ(loaded.attributes.materials.size(), 1u);
   EXPECT_EQ(loaded.note.rfind(path + ": ", 0), 0u);
   EXPECT_EQ(loaded.note.find('\n'), std::string::npos);
 }

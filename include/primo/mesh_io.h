@@ -7,13 +7,16 @@
 #include <vector>
 
 #include "primo/mesh.h"
+#include "primo/mesh_attributes.h"
 
 namespace primo {
 
-// A polygon soup as a file lists it: points, and faces as 0-based vertex indices.
+// A polygon soup as a file lists it: points, faces as 0-based vertex indices, and what the file
+// gives the faces' corners (UVs, normals, colours, materials; primo/mesh_attributes.h).
 struct PolygonSoup {
   std::vector<Vec3> points;
   std::vector<std::vector<int>> faces;
+  MeshAttributes attributes = {};
 };
 
 // Reads OBJ, OFF, PLY, STL or OM, parsed by PriMo (OpenMesh's readers are not safe on hostile
@@ -46,8 +49,17 @@ Mesh mesh_from_soup(const PolygonSoup& soup, const std::string& source);
 // failure.
 void save_mesh(const Mesh& mesh, const std::string& path);
 
+// save_mesh with the attributes the mesh was read with (LoadedMesh::attributes): OBJ writes
+// them as `vt`, `vn`, `usemtl` and `mtllib` (the read file's text with only `v` and `vn`
+// changed when it was an OBJ), glTF as texture coordinates, colours, normals, materials and
+// images; OFF, PLY, STL and OM hold none of them. Normals are recomputed from the mesh
+// (corner_normals). Throws Error naming the file, also when the attributes do not fit the mesh.
+void save_mesh(const Mesh& mesh, const MeshAttributes& attributes, const std::string& path);
+
 // The bytes save_mesh writes for `path`'s format (what primo::StagedOutputs stages, so that a
 // command can write a mesh and its statistics together). Throws Error naming `path`.
 std::string mesh_file_bytes(const Mesh& mesh, const std::string& path);
+std::string mesh_file_bytes(const Mesh& mesh, const MeshAttributes& attributes,
+                            const std::string& path);
 
 }  // namespace primo

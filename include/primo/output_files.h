@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "primo/mesh.h"
+#include "primo/mesh_attributes.h"
 
 namespace primo {
 
@@ -52,6 +53,7 @@ class StagedOutputs {
   // or read-only folder, full disk, special file at the target).
   void stage(const std::string& path, const std::string& bytes);
   void stage_mesh(const std::string& path, const Mesh& mesh);
+  void stage_mesh(const std::string& path, const Mesh& mesh, const MeshAttributes& attributes);
   // Renames every staged file into place, in the order staged. When a rename fails, the
   // targets already replaced are put back (each existing target is kept under a second name,
   // a hard link, until every rename succeeded) and the error says so; a target that could not

@@ -72,7 +72,8 @@ int run_deform(const DeformArguments& args) {
 
   // Both results or neither: staged beside their targets, renamed only when both are complete.
   StagedOutputs out;
-  out.stage_mesh(args.output, result);
+  // UVs, materials, colours and normal structure as read; only positions and normals change.
+  out.stage_mesh(args.output, result, loaded.attributes);
   if (!args.stats.empty()) {
     nlohmann::json stats = {
         {"energy", report.energy},

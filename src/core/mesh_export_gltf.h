@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "primo/mesh.h"
+#include "primo/mesh_attributes.h"
 
 namespace primo::detail {
 
@@ -51,7 +52,24 @@ void append_raw(std::string& out, const std::vector<T>& values) {
   out.append(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));
 }
 
+// The same with the attributes the mesh was read with. Without any (attributes.empty() but for an
+// OBJ's text) the file is the one above. With them, every face corner becomes a glTF vertex of its
+// own where its UVs, colours or normal slot differ (corners that agree share one), the faces form
+// one primitive per material (in the order the materials are first used, faces in file order within
+// each), each the mesh of a node of its own with its face sizes and kVertexCopiesKey in the node's
+// extras, and the primitives share TEXCOORD_n (v flipped to glTF's downward v), COLOR_n (float
+// RGBA), NORMAL (corner_normals, or the vertex normals above when the file had none) and POSITION.
+// Materials are written with their factors and textures; images are embedded in a GLB (a file the
+// source refers to is read now), and in a .gltf embedded as a data URI when the source embedded
+// them, else referred to relative to `path`'s folder. Throws Error "<path>: ..." as above, and when
+// an image file a GLB must embed cannot be read.
+std::string gltf_bytes(const Mesh& mesh, const MeshAttributes& attributes, bool binary,
+                       const std::string& name, const std::string& path);
+
 // The name of the node extras key above.
 inline constexpr const char* kFaceSizesKey = "primo_face_sizes";
+// A node extras key of files written with attributes: its vertices are copies per corner,
+// merged by position when read back (as in files of other tools), its fans joined as above.
+inline constexpr const char* kVertexCopiesKey = "primo_vertex_copies";
 
 }  // namespace primo::detail

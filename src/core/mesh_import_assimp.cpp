@@ -11,7 +11,8 @@
 //    into pieces. Vertices are merged when their transformed positions are bitwise equal, in
 //    order of first appearance. Split copies come from the same stored coordinates, so they are
 //    exactly equal; distinct vertices are never merged however close. A file written by PriMo
-//    (its node has the extras key primo_face_sizes) is not merged: its vertices are the mesh's.
+//    (its node has the extras key primo_face_sizes) is not merged: its vertices are the mesh's,
+//    unless it was written with attributes (primo_vertex_copies: a vertex per distinct corner).
 // 4. glTF holds triangles only. When a node carries PriMo's face sizes and its triangles are
 //    exactly the fans PriMo writes, the fans are joined back into the original faces.
 // 5. What was joined, merged and left out goes into a one-line note.
@@ -47,6 +48,7 @@
 #include "gltf_buffer_files.h"
 #include "gltf_limits.h"
 #include "mesh_export_gltf.h"
+#include "scene_attributes.h"
 #include "scene_reader_process.h"
 #include "scene_signature.h"
 #include "threemf_checks.h"
@@ -216,7 +218,8 @@ struct Instance {
 
 class SceneBaker {
  public:
-  SceneBaker(const aiScene& scene, const std::string& path) : scene_(scene), path_(path) {}
+  SceneBaker(const aiScene& scene, const std::string& path)
+      : scene_(scene), path_(path), attributes_(scene, path) {}
 
   SceneSoup bake() {
     if (!scene_.mRootNode) fail(path_, "cannot read: the " + format_name(path_) + " scene has no nodes");
@@ -227,6 +230,7 @@ class SceneBaker {
       fail(path_, what);
     }
     SceneSoup out;
+    soup_.attributes = attributes_.finish(dropped_);
     out.note = note();
     if (instances_.size() > 1) out.parts = parts();
     out.soup = std::move(soup_);
@@ -260,9 +264,12 @@ class SceneBaker {
   }
 
   void add_mesh(const aiNode& node, const aiMesh& mesh, const Eigen::Matrix4d& transform) {
-    aiString face_sizes;
+    aiString face_sizes, copies;
     const bool primo_file =
         node.mMetaData && node.mMetaData->Get(std::string(kFaceSizesKey), face_sizes);
+    // A file PriMo wrote with attributes has a vertex per distinct corner: merged by position.
+    const bool keep_vertices =
+        primo_file && !node.mMetaData->Get(std::string(kVertexCopiesKey), copies);
     if (!mesh.mVertices && mesh.mNumVertices > 0)
       fail(path_, "cannot read: mesh " + quoted_name(mesh.mName) + " has no vertex positions");
     if (soup_.points.size() + mesh.mNumVertices > size_t(INT_MAX))
@@ -275,7 +282,7 @@ class SceneBaker {
       const Eigen::Vector4d h = transform * Eigen::Vector4d(a.x, a.y, a.z, 1.0);
       const Vec3 p = h[3] == 1.0 ? Vec3(h.head<3>()) : Vec3(h.head<3>() / h[3]);
       ++input_vertices_;
-      if (primo_file) {
+      if (keep_vertices) {
         index_of[v] = int(soup_.points.size());
         soup_.points.push_back(p);
         continue;
@@ -317,7 +324,9 @@ class SceneBaker {
     const bool mirrored = transform.topLeftCorner<3, 3>().determinant() < 0;
     Instance instance{quoted_name(node.mName), soup_.faces.size(), faces.size()};
     std::vector<int> distinct;
+    std::vector<unsigned> ai_corners;
     for (auto& face : faces) {
+      ai_corners.assign(face.begin(), face.end());
       for (int& index : face) index = index_of[size_t(index)];
       // A face with fewer than 3 distinct corners once copies are merged has no area: exporters
       // leave such collapsed triangles behind, and they are dropped (and counted) here.
@@ -328,15 +337,16 @@ class SceneBaker {
         --instance.n_faces;
         continue;
       }
-      if (mirrored) std::reverse(face.begin() + 1, face.end());
+      if (mirrored) {
+        std::reverse(face.begin() + 1, face.end());
+        std::reverse(ai_corners.begin() + 1, ai_corners.end());
+      }
+      attributes_.add_face(mesh, ai_corners, face);
       soup_.faces.push_back(std::move(face));
     }
     instances_.push_back(instance);
 
     // What the soup leaves out of this mesh.
-    if (!primo_file && mesh.HasNormals()) normals_ = true;
-    if (mesh.HasTextureCoords(0)) uvs_ = true;
-    if (mesh.HasVertexColors(0)) colors_ = true;
     if (mesh.mNumBones > 0) skins_.emplace_back(quoted_name(node.mName), mesh.mNumBones);
     morph_targets_ += mesh.mNumAnimMeshes;
   }
@@ -366,21 +376,8 @@ class SceneBaker {
     if (any_foreign_faces_ && format == "glTF")
       said.push_back("glTF stores triangles only, so the faces are triangles");
 
-    std::vector<std::string> ignored;
-    size_t materials = 0;
-    for (unsigned m = 0; m < scene_.mNumMaterials; ++m) {
-      const aiMaterial* material = scene_.mMaterials[m];
-      // Assimp adds a material of its own (unnamed, or DefaultMaterial) when a file has none.
-      if (!material) continue;
-      const aiString name = material->GetName();
-      if (name.length > 0 && name != aiString(AI_DEFAULT_MATERIAL_NAME)) ++materials;
-    }
-    if (materials) ignored.push_back(plural(materials, "material", "materials"));
-    if (scene_.mNumTextures)
-      ignored.push_back(plural(scene_.mNumTextures, "embedded texture", "embedded textures"));
-    if (uvs_) ignored.push_back("UVs");
-    if (normals_) ignored.push_back("normals");
-    if (colors_) ignored.push_back("vertex colors");
+    // UVs, normals, colours and materials are kept (SceneAttributeCollector).
+    std::vector<std::string> ignored = dropped_;
     for (size_t s = 0; s < skins_.size() && s < 3; ++s)
       ignored.push_back("the skin of " + skins_[s].first + " (" +
                         plural(skins_[s].second, "bone", "bones") + "; bind pose used)");
@@ -423,7 +420,8 @@ class SceneBaker {
   std::vector<Instance> instances_;
   size_t input_vertices_ = 0;
   size_t points_ = 0, lines_ = 0, unused_meshes_ = 0, morph_targets_ = 0, collapsed_faces_ = 0;
-  bool normals_ = false, uvs_ = false, colors_ = false;
+  SceneAttributeCollector attributes_;
+  std::vector<std::string> dropped_;  // attributes that could not be kept
   bool any_foreign_faces_ = false;  // faces of meshes PriMo did not write
   bool face_sizes_mismatch_ = false;
   std::vector<std::pair<std::string, size_t>> skins_;
@@ -555,9 +553,12 @@ bool is_scene_file(const std::string& path) {
 }
 
 LoadedMesh load_mesh_noted(const std::string& path) {
-  if (!is_scene_file(path)) return {load_mesh(path), ""};
-  const detail::SceneSoup scene = detail::read_scene_file(path);
-  return {detail::mesh_from_scene_soup(scene, path), scene.note};
+  if (!is_scene_file(path)) return detail::load_polygon_file(path);
+  detail::SceneSoup scene = detail::read_scene_file(path);
+  LoadedMesh loaded{detail::mesh_from_scene_soup(scene, path), scene.note,
+                    std::move(scene.soup.attributes)};
+  check_attributes(loaded.mesh, loaded.attributes, path + ": cannot read");
+  return loaded;
 }
 
 }  // namespace primo

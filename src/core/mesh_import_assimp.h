@@ -6,6 +6,7 @@
 #include <string>
 #include <string_view>
 
+#include "primo/mesh_import.h"
 #include "primo/mesh_io.h"
 
 namespace primo::detail {
@@ -30,6 +31,10 @@ SceneSoup read_scene_file(const std::string& path, const ReaderProcessLimits* li
 // and names the file in errors; files the bytes refer to are not read.
 SceneSoup read_scene_bytes(std::string_view bytes, const std::string& path,
                            const ReaderProcessLimits* limits = nullptr);
+
+// load_mesh_noted for the formats PriMo parses itself (mesh_io.cpp): an OBJ's attributes and
+// material libraries, the others' mesh alone.
+LoadedMesh load_polygon_file(const std::string& path);
 
 // mesh_from_soup, and when several meshes were joined, the error says which faces came from
 // which.

@@ -20,6 +20,7 @@
 #include <cctype>
 #include <cerrno>
 #include <charconv>
+#include <cmath>
 #include <climits>
 #include <cstdio>
 #include <cstring>
@@ -31,6 +32,9 @@
 #include <system_error>
 
 #include "mesh_export_gltf.h"
+#include "mesh_export_obj.h"
+#include "mesh_import_assimp.h"
+#include "obj_material_library.h"
 #include "mesh_readers.h"
 #include "primo/error.h"
 #include "primo/input_files.h"
@@ -167,12 +171,13 @@ bool parse_integer(std::string_view word, long long& value) {
 // ---------------------------------------------------------------------------------------------
 // OBJ
 
-// Statements that carry nothing a polygon mesh needs (texture coordinates, normals, grouping,
-// materials, display attributes, points and lines).
+// Statements that carry nothing a polygon mesh or its attributes need (grouping, the material
+// library's name, display attributes, points and lines): kept in the text an OBJ is written
+// back from (obj_text), not parsed.
 bool is_ignored_obj_statement(std::string_view keyword) {
   static const char* const kIgnored[] = {
-      "vt",       "vn",         "vp",        "g",      "o",      "s",     "mg",
-      "usemtl",   "mtllib",     "l",         "p",      "lod",    "bevel", "c_interp",
+      "vp",       "g",          "o",         "s",      "mg",     "mtllib",
+      "l",        "p",          "lod",       "bevel",  "c_interp",
       "d_interp", "shadow_obj", "trace_obj", "maplib", "usemap", "ctech", "stech"};
   for (const char* ignored : kIgnored)
     if (keyword == ignored) return true;
@@ -188,22 +193,49 @@ bool is_free_form_obj_statement(std::string_view keyword) {
   return false;
 }
 
-// One face corner: "i", "i/t", "i//n" or "i/t/n". Returns the vertex reference i as written.
-bool parse_obj_corner(std::string_view word, long long& vertex) {
-  long long ignored;
+// One face corner: "i", "i/t", "i//n" or "i/t/n": the vertex, texture coordinate and normal
+// references as written (0 for the ones the corner does not give).
+struct ObjCorner {
+  long long vertex = 0, texcoord = 0, normal = 0;
+};
+
+bool parse_obj_corner(std::string_view word, ObjCorner& corner) {
+  corner = ObjCorner();
   const size_t slash = word.find('/');
-  if (!parse_integer(word.substr(0, slash), vertex)) return false;
+  if (!parse_integer(word.substr(0, slash), corner.vertex)) return false;
   if (slash == std::string_view::npos) return true;
   const std::string_view rest = word.substr(slash + 1);
   const size_t second_slash = rest.find('/');
   const std::string_view texture = rest.substr(0, second_slash);
-  if (second_slash == std::string_view::npos) return parse_integer(texture, ignored);
-  if (!texture.empty() && !parse_integer(texture, ignored)) return false;
-  return parse_integer(rest.substr(second_slash + 1), ignored);
+  if (second_slash == std::string_view::npos)
+    return parse_integer(texture, corner.texcoord);
+  if (!texture.empty() && !parse_integer(texture, corner.texcoord)) return false;
+  return parse_integer(rest.substr(second_slash + 1), corner.normal);
+}
+
+// A texture coordinate or normal reference of a face corner as an index into what was read so
+// far (`count`), -1 when the corner has none; relative (negative) references are resolved
+// here, positive ones are checked at the end of the file.
+int obj_attribute_index(long long reference, size_t count, const char* kind,
+                        const std::string& path, int line_number) {
+  if (reference == 0) return -1;
+  const long long index = reference < 0 ? (long long)count + reference : reference - 1;
+  if (index < 0)
+    fail_at_line(path, line_number,
+                 std::string("relative ") + kind + " index " + std::to_string(reference) +
+                     " points before the first one (" + std::to_string(count) + " read so far)");
+  if (index > INT_MAX)
+    fail_at_line(path, line_number,
+                 std::string(kind) + " index " + std::to_string(reference) + " is too large");
+  return int(index);
 }
 
 PolygonSoup parse_obj(const std::string& path, std::string_view text) {
   PolygonSoup soup;
+  MeshAttributes& attributes = soup.attributes;
+  CornerValues<2> texcoords;
+  size_t n_normals = 0;
+  int material = -1;
   std::vector<int> face_lines;             // for index errors, which can only be judged at the end
   std::vector<long long> face_references;  // the 1-based (or relative) indices as written
   LineReader lines(text);
@@ -239,17 +271,51 @@ PolygonSoup parse_obj(const std::string& path, std::string_view text) {
         if (i <= 3) values[i - 1] = value;  // then an optional weight or color: ignored
       }
       soup.points.emplace_back(values[0], values[1], values[2]);
+    } else if (keyword == "vt") {
+      if (words.size() < 2) fail_at_line(path, line_number, "expected a coordinate after 'vt'");
+      std::array<double, 2> uv{0, 0};
+      for (size_t i = 1; i < words.size(); ++i) {
+        double value;
+        if (!parse_double(words[i], value))
+          fail_at_line(path, line_number, in_quotes(words[i]) + " is not a number");
+        if (!std::isfinite(value))
+          fail_at_line(path, line_number,
+                       "texture coordinate " + in_quotes(words[i]) + " is not finite");
+        if (i <= 2) uv[i - 1] = value;  // then an optional w: kept in the text only
+      }
+      texcoords.values.push_back(uv);
+    } else if (keyword == "vn") {
+      if (words.size() < 4) fail_at_line(path, line_number, "expected 3 numbers after 'vn'");
+      double value;
+      for (size_t i = 1; i < words.size(); ++i)
+        if (!parse_double(words[i], value))
+          fail_at_line(path, line_number, in_quotes(words[i]) + " is not a number");
+      ++n_normals;  // its value is recomputed from the faces whenever the mesh is written
+    } else if (keyword == "usemtl") {
+      const std::string name = words.size() > 1 ? std::string(words[1]) : std::string();
+      const auto known = std::find_if(attributes.materials.begin(), attributes.materials.end(),
+                                      [&](const MeshMaterial& m) { return m.name == name; });
+      material = int(known - attributes.materials.begin());
+      if (known == attributes.materials.end()) {
+        attributes.materials.emplace_back();
+        attributes.materials.back().name = name;
+      }
     } else if (keyword == "f" || keyword == "fo") {
       if (words.size() < 2) fail_at_line(path, line_number, "expected vertex indices after 'f'");
       std::vector<int> face;
       face.reserve(words.size() - 1);
       const long long n_points = static_cast<long long>(soup.points.size());
       for (size_t i = 1; i < words.size(); ++i) {
-        long long reference;
-        if (!parse_obj_corner(words[i], reference))
+        ObjCorner corner;
+        if (!parse_obj_corner(words[i], corner))
           fail_at_line(
               path, line_number,
               in_quotes(words[i]) + " is not a face vertex (expected i, i/t, i//n or i/t/n)");
+        texcoords.corner.push_back(obj_attribute_index(corner.texcoord, texcoords.values.size(),
+                                                       "texture coordinate", path, line_number));
+        attributes.normal_corner.push_back(
+            obj_attribute_index(corner.normal, n_normals, "normal", path, line_number));
+        const long long reference = corner.vertex;
         if (reference == 0)
           fail_at_line(path, line_number, "vertex index 0 is invalid (OBJ indices start at 1)");
         // Negative indices count back from the last vertex read so far.
@@ -266,6 +332,7 @@ PolygonSoup parse_obj(const std::string& path, std::string_view text) {
       }
       soup.faces.push_back(std::move(face));
       face_lines.push_back(line_number);
+      attributes.face_material.push_back(material);
     } else if (is_ignored_obj_statement(keyword)) {
       continue;
     } else if (is_free_form_obj_statement(keyword)) {
@@ -289,6 +356,33 @@ PolygonSoup parse_obj(const std::string& path, std::string_view text) {
                        " is out of range (the file has " + std::to_string(soup.points.size()) +
                        " vertices)");
     }
+  // The same for texture coordinates and normals, which a file without them must not name.
+  reference = 0;
+  for (size_t f = 0; f < soup.faces.size(); ++f)
+    for (size_t k = 0; k < soup.faces[f].size(); ++k, ++reference) {
+      const int t = texcoords.corner[reference], n = attributes.normal_corner[reference];
+      if (t >= int(texcoords.values.size()))
+        fail_at_line(path, face_lines[f],
+                     "face " + std::to_string(f) + ": texture coordinate index " +
+                         std::to_string(t + 1) + " is out of range (the file has " +
+                         std::to_string(texcoords.values.size()) + " 'vt' lines)");
+      if (n >= int(n_normals))
+        fail_at_line(path, face_lines[f],
+                     "face " + std::to_string(f) + ": normal index " + std::to_string(n + 1) +
+                         " is out of range (the file has " + std::to_string(n_normals) +
+                         " 'vn' lines)");
+    }
+  if (std::any_of(texcoords.corner.begin(), texcoords.corner.end(), [](int t) { return t >= 0; }))
+    attributes.texcoords.push_back(std::move(texcoords));
+  attributes.n_normals = int(n_normals);
+  if (std::none_of(attributes.normal_corner.begin(), attributes.normal_corner.end(),
+                   [](int n) { return n >= 0; })) {
+    attributes.normal_corner.clear();
+    attributes.n_normals = 0;
+  }
+  if (attributes.materials.empty()) attributes.face_material.clear();
+  attributes.obj_text.assign(text);
+  attributes.obj_path = path;
   return soup;
 }
 
@@ -427,40 +521,7 @@ PolygonSoup parse_off(const std::string& path, std::string_view text) {
 // ---------------------------------------------------------------------------------------------
 // Writing
 
-// 17 significant digits read back as the same double; to_chars ignores the C locale.
-void append_number(std::string& out, double value) {
-  char buffer[64];
-  const auto result =
-      std::to_chars(buffer, buffer + sizeof buffer, value, std::chars_format::general, 17);
-  out.append(buffer, result.ptr);
-}
-
-void append_point(std::string& out, const Vec3& p) {
-  append_number(out, p.x());
-  out += ' ';
-  append_number(out, p.y());
-  out += ' ';
-  append_number(out, p.z());
-}
-
-std::string obj_text(const Mesh& mesh) {
-  std::string out = "# PriMo: " + std::to_string(mesh.n_vertices()) + " vertices, " +
-                    std::to_string(mesh.n_faces()) + " faces\n";
-  for (auto v : mesh.vertices()) {
-    out += "v ";
-    append_point(out, mesh.point(v));
-    out += '\n';
-  }
-  for (auto f : mesh.faces()) {
-    out += 'f';
-    for (auto v : f.vertices()) {
-      out += ' ';
-      out += std::to_string(v.idx() + 1);
-    }
-    out += '\n';
-  }
-  return out;
-}
+using detail::append_point;
 
 std::string off_text(const Mesh& mesh) {
   std::string out = "OFF\n" + std::to_string(mesh.n_vertices()) + " " +
@@ -524,17 +585,23 @@ PolygonSoup parse_mesh_bytes(std::string_view bytes, const std::string& path) {
   fail(path, "cannot read: unhandled format");
 }
 
-Mesh load_mesh(const std::string& path) {
-  const Format format = format_or_fail(path, "cannot read");  // before the file is opened
-  // Scene formats go to Assimp with the file's name: a .gltf finds its buffers beside it.
-  if (format == Format::Gltf || format == Format::Glb || format == Format::Scene)
-    return load_mesh_noted(path).mesh;
+Mesh load_mesh(const std::string& path) { return load_mesh_noted(path).mesh; }
+
+namespace detail {
+
+LoadedMesh load_polygon_file(const std::string& path) {
+  format_or_fail(path, "cannot read");  // before the file is opened
   try {
-    return mesh_from_soup(parse_mesh_bytes(read_input_file(path), path), path);
+    PolygonSoup soup = parse_mesh_bytes(read_input_file(path), path);
+    LoadedMesh loaded{mesh_from_soup(soup, path), "", std::move(soup.attributes)};
+    loaded.note = read_obj_material_libraries(loaded.attributes, path);
+    return loaded;
   } catch (const std::bad_alloc&) {
     fail(path, "cannot read: out of memory");
   }
 }
+
+}  // namespace detail
 
 namespace {
 
@@ -567,13 +634,23 @@ void check_float_rounding(const Mesh& mesh, const std::string& path, const char*
 }  // namespace
 
 std::string mesh_file_bytes(const Mesh& mesh, const std::string& path) {
+  return mesh_file_bytes(mesh, MeshAttributes(), path);
+}
+
+std::string mesh_file_bytes(const Mesh& mesh, const MeshAttributes& attributes,
+                            const std::string& path) {
   const Format format = format_or_fail(path, "cannot save");
+  try {
+    check_attributes(mesh, attributes, path + ": cannot save: the attributes do not fit the mesh");
+  } catch (const std::bad_alloc&) {
+    fail(path, "cannot save: out of memory");
+  }
   if (format == Format::Scene)
     fail(path, "cannot save: " + fs::path(path).extension().string() +
                    " files are read, not written (save as .gltf or .glb for the same tools)");
   try {
     switch (format) {
-      case Format::Obj: return obj_text(mesh);
+      case Format::Obj: return detail::obj_bytes(mesh, attributes, path);
       case Format::Off: return off_text(mesh);
       case Format::Ply:
         check_float_rounding(mesh, path, "PLY");
@@ -589,7 +666,8 @@ std::string mesh_file_bytes(const Mesh& mesh, const std::string& path) {
       case Format::Gltf:
       case Format::Glb:
         check_float_rounding(mesh, path, "glTF");
-        return detail::gltf_bytes(mesh, format == Format::Glb, fs::path(path).stem().string(), path);
+        return detail::gltf_bytes(mesh, attributes, format == Format::Glb,
+                                  fs::path(path).stem().string(), path);
       case Format::Scene:
         break;  // refused above
     }
@@ -600,6 +678,10 @@ std::string mesh_file_bytes(const Mesh& mesh, const std::string& path) {
 }
 
 void save_mesh(const Mesh& mesh, const std::string& path) {
+  save_mesh(mesh, MeshAttributes(), path);
+}
+
+void save_mesh(const Mesh& mesh, const MeshAttributes& attributes, const std::string& path) {
   format_or_fail(path, "cannot save");
   const fs::path target(path);
   const fs::path folder = target.has_parent_path() ? target.parent_path() : fs::path(".");
@@ -608,7 +690,7 @@ void save_mesh(const Mesh& mesh, const std::string& path) {
     fail(path, "cannot save: the folder " + in_quotes(folder.string()) + " does not exist");
   if (fs::is_directory(target, error)) fail(path, "cannot save: this is a folder, not a file");
   StagedOutputs out;
-  out.stage_mesh(path, mesh);
+  out.stage_mesh(path, mesh, attributes);
   out.commit();
 }
 

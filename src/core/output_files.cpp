@@ -166,6 +166,11 @@ void StagedOutputs::stage_mesh(const std::string& path, const Mesh& mesh) {
   stage(path, mesh_file_bytes(mesh, path));
 }
 
+void StagedOutputs::stage_mesh(const std::string& path, const Mesh& mesh,
+                               const MeshAttributes& attributes) {
+  stage(path, mesh_file_bytes(mesh, attributes, path));
+}
+
 // A second name for each existing target (a hard link: no copy, and restoring it is one
 // atomic rename), so that a rename failing half-way through can put the earlier targets back.
 // Throws before any target changed when a backup cannot be made.

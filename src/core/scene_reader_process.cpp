@@ -16,6 +16,7 @@
 #include <fstream>
 #include <new>
 
+#include "mesh_attributes_codec.h"
 #include "primo/error.h"
 
 #if defined(__SANITIZE_ADDRESS__)
@@ -61,6 +62,7 @@ class ReplyWriter {
       u64(face.size());
       raw(face.data(), face.size() * sizeof(int));
     }
+    text(encode_attributes(scene.soup.attributes));
   }
 
   void message(Outcome outcome, const std::string& what) {
@@ -134,6 +136,8 @@ bool decode_soup(ReplyReader& in, SceneSoup& scene) {
     face.resize(size_t(size));
     if (!in.raw(face.data(), face.size() * sizeof(int))) return false;
   }
+  std::string attributes;
+  if (!in.text(attributes) || !decode_attributes(attributes, scene.soup.attributes)) return false;
   return in.left() == 0;
 }
 

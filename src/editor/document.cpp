@@ -52,6 +52,7 @@ std::unique_ptr<Document> load_document(const std::string& path, int stand_in_ab
     LoadedMesh loaded = load_mesh_noted(path);
     auto doc = make_document(std::move(loaded.mesh), path, stand_in_above);
     doc->load_note = note_without_path(loaded.note, path);
+    doc->attributes = std::make_shared<const MeshAttributes>(std::move(loaded.attributes));
     doc->state.orientation = mesh_orientation(path);
     doc->saved_state = doc->state;
     doc->history.reset(doc->state);
@@ -63,6 +64,7 @@ std::unique_ptr<Document> load_document(const std::string& path, int stand_in_ab
   const ResolvedScenario resolved = resolve_scenario(scenario, mesh);
   auto doc = make_document(std::move(mesh), scenario.mesh_path, stand_in_above);
   doc->load_note = note_without_path(loaded.note, scenario.mesh_path);
+  doc->attributes = std::make_shared<const MeshAttributes>(std::move(loaded.attributes));
   doc->scenario_path = path;
   doc->solver = scenario.solver;
   doc->state = import_scenario(scenario, resolved, *doc->topology);

@@ -8,6 +8,7 @@
 #include "edit_state.h"
 #include "mesh_topology.h"
 #include "proxy_mesh.h"
+#include "primo/mesh_attributes.h"
 #include "primo/scenario.h"
 #include "undo_stack.h"
 
@@ -24,6 +25,8 @@ struct Document {
   // What reading a scene file (glTF, FBX, COLLADA, 3MF) joined, merged or left out, without the
   // path: "merged 194 vertex copies ...; ignored: 1 material, UVs". "" for other formats.
   std::string load_note;
+  // UVs, normals, colours and materials as read, for "Export deformed mesh" to write back.
+  std::shared_ptr<const MeshAttributes> attributes = std::make_shared<const MeshAttributes>();
   SolverSpec solver;          // max_iterations / tolerance / method of a settle and of exports
   // The opened scenario's solved state, handed to the solver with the first problem.
   std::vector<RigidTransform> start_motions;

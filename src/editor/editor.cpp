@@ -153,8 +153,9 @@ void Editor::save_mesh(const std::string& path) {
   task_is_open_ = false;
   task_label_ = "Saving " + file_name(path);
   task_started_ = clock_;
-  task_ = std::async(std::launch::async, [this, mesh, path, caveat]() -> std::function<void()> {
-    primo::save_mesh(*mesh, path);
+  task_ = std::async(std::launch::async, [this, mesh, attributes = doc_->attributes, path,
+                                           caveat]() -> std::function<void()> {
+    primo::save_mesh(*mesh, *attributes, path);
     return [this, path, caveat] { info("Saved the deformed mesh to " + path + caveat); };
   });
 }
