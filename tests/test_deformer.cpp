@@ -405,3 +405,28 @@ TEST(Deformer, FaceMotionsRestoreTheWholeStateIncludingHandlesFreeParts) {
   EXPECT_FALSE(copy.path_pending(o.path));
   EXPECT_LE(copy.solve(o).iterations, 1);
 }
+
+TEST(Deformer, AMeshPosedAtRestKeepsTheFilesCoordinatesBitForBit) {
+  // A cylinder's coordinates are sines and cosines, which c + (p - c) does not give back
+  // exactly: the prisms' rest copies are the vertices themselves and a body at rest adds
+  // nothing, so the solve of handles left at rest returns every coordinate unchanged, and a
+  // handle moved and moved back does too once the solve is back at rest.
+  const Mesh mesh = make_cylinder(0.3, 1.0, 24, 10, FaceShape::Triangles);
+  const int n = int(mesh.n_faces());
+  Handle bottom{"bottom", {0, 1, 2}, Fix::All, {}}, top{"top", {n - 1, n - 2}, Fix::All, {}};
+  Deformer d(mesh, PrismParameters{}, {bottom, top});
+  d.solve(SolveOptions{});
+  std::vector<Vec3> points = d.vertex_positions();
+  int moved = 0;
+  for (auto v : mesh.vertices()) moved += points[size_t(v.idx())] != mesh.point(v);
+  EXPECT_EQ(moved, 0) << "of " << mesh.n_vertices() << " vertices";
+  // With widths below 1 the rest copies are scaled about the face centroids, and the
+  // vertex is their mean, as the scenario format says.
+  PrismParameters narrow;
+  narrow.width = 0.8;
+  Deformer w(mesh, narrow, {bottom, top});
+  points = w.vertex_positions();
+  double farthest = 0.0;
+  for (auto v : mesh.vertices()) farthest = std::max(farthest, (points[size_t(v.idx())] - mesh.point(v)).norm());
+  EXPECT_GT(farthest, 1e-4) << "the narrower copies' mean lies inside the surface";
+}

@@ -233,9 +233,10 @@ class Deformer {
   std::vector<double> target_move(const PathOptions& limits) const;
   bool make_solver(const SolveOptions& options);  // whether it was made now
   double body_energy(int body) const;  // of the joints and springs on one body
-  // vertex_positions, a body's point (relative to its rest centre) placed by world_point.
-  template <class WorldPoint>
-  void gather_vertices(std::vector<Vec3>& points, const WorldPoint& world_point) const;
+  // vertex_positions: each vertex the mean of its prisms' rest copies plus the mean of their
+  // displacements, `displacement(body, point relative to the body's rest centre)`.
+  template <class Displacement>
+  void gather_vertices(std::vector<Vec3>& points, const Displacement& displacement) const;
   void rebuild_springs();
   void place_springs(const std::vector<Vec3>& offsets);  // one target offset per force
 

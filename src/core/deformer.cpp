@@ -731,20 +731,26 @@ std::vector<Vec3> Deformer::vertex_positions() const {
 void Deformer::vertex_positions(std::vector<Vec3>& points) const {
   if (previewing()) {
     const HierarchicalSolver& h = *hierarchical_;
-    gather_vertices(points, [&](int b, const Vec3& x) { return h.previewed_point(state_, b, x); });
+    gather_vertices(points, [&](int b, const Vec3& x) {
+      return Vec3(h.previewed_point(state_, b, x) - x - body_center_[size_t(b)]);
+    });
   } else {
+    // (R - I) x + (position - centre) rather than R x + position - rest: a body at rest adds
+    // exactly nothing, so a mesh posed at rest (or its unmoved parts) comes out with the
+    // file's very coordinates.
     gather_vertices(points, [&](int b, const Vec3& x) {
       const BodyState& s = state_[size_t(b)];
-      return Vec3(s.rotation * x + s.position);
+      return Vec3((s.rotation * x - x) + (s.position - body_center_[size_t(b)]));
     });
   }
 }
 
-template <class WorldPoint>
-void Deformer::gather_vertices(std::vector<Vec3>& points, const WorldPoint& world_point) const {
-  // Each vertex the mean of its corners where their prisms put them, added in corner order,
-  // gathered per vertex in parallel: no buffer of corners (at a million faces 69 MB, which
-  // the allocator maps afresh and the kernel faults in on every call).
+template <class Displacement>
+void Deformer::gather_vertices(std::vector<Vec3>& points, const Displacement& displacement) const {
+  // Each vertex the mean of its prisms' copies of it where their motions put them (the
+  // scenario format's rule), added in corner order, gathered per vertex in parallel: no buffer
+  // of corners (at a million faces 69 MB, which the allocator maps afresh and the kernel
+  // faults in on every call).
   points.resize(rest_points_.size());
   parallel_chunks(points.size(), kParallelGrain, [&](size_t begin, size_t end) {
     for (size_t v = begin; v < end; ++v) {
@@ -754,13 +760,20 @@ void Deformer::gather_vertices(std::vector<Vec3>& points, const WorldPoint& worl
         out = rest_points_[v];
         continue;
       }
-      Vec3 sum = Vec3::Zero();
+      // The mean of the prisms' copies of the vertex at rest (the vertex itself unless a width
+      // scaled them) plus the mean of their displacements.
+      Vec3 sum = Vec3::Zero(), copies = Vec3::Zero();
+      bool copies_are_the_vertex = true;
       for (int i = first; i < last; ++i) {
         const int k = layer_.vertex_corners[size_t(i)];
         const int b = corner_body_[size_t(k)];
-        sum += world_point(b, Vec3(layer_.corner_point[size_t(k)] - body_center_[size_t(b)]));
+        const Vec3& copy = layer_.corner_point[size_t(k)];
+        copies += copy;
+        copies_are_the_vertex = copies_are_the_vertex && copy == rest_points_[v];
+        sum += displacement(b, Vec3(copy - body_center_[size_t(b)]));
       }
-      out = sum / double(last - first);
+      const double n = double(last - first);
+      out = (copies_are_the_vertex ? rest_points_[v] : Vec3(copies / n)) + sum / n;
     }
   });
 }

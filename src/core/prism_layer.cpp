@@ -97,7 +97,9 @@ PrismLayer build_prism_layer(const Mesh& mesh, const PrismParameters& params, co
                     ": the blended extrusion direction has zero length (normal_blend " +
                     std::to_string(beta) + ")");
       layer.corner_vertex.push_back(v.idx());
-      layer.corner_point.push_back(c + width * (mesh.point(v) - c));
+      // At width 1 the vertex itself, not c + (p - c), which rounds: a prism at rest then puts
+      // its corner exactly on the file's coordinates.
+      layer.corner_point.push_back(width == 1.0 ? mesh.point(v) : Vec3(c + width * (mesh.point(v) - c)));
       layer.corner_offset.push_back(vertex_height[v.idx()] / len * blended);
       // Products of finite settings can still overflow (a height or width of 1e300).
       if (!layer.corner_point.back().allFinite() || !layer.corner_offset.back().allFinite())
