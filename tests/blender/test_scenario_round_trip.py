@@ -48,7 +48,11 @@ assert abs(first["prisms"]["half_thickness"] - 0.06) < 1e-7
 import primo  # noqa: E402
 X, report = primo.deform_scenario(path)
 assert report.converged, report
-t.check_close("primo deform of the export vs the shape key (float32)", posed, X.astype(np.float32), 1e-9 * D)
+# The export carries the Empties' motions as axis, angle and translation in decimal, so the two
+# solves agree to about 1e-9 of the diagonal, not bit for bit: a coordinate lying that close
+# to a float32 rounding boundary rounds the other way in the shape key (one float32 step).
+t.check_close("primo deform of the export vs the shape key (float32)", posed, X,
+              1e-9 * D + 2.0 ** -23 * np.abs(X).max())
 
 # Back into Blender, and out again.
 assert bpy.ops.primo.import_scenario(filepath=path) == {'FINISHED'}
