@@ -10,12 +10,12 @@
 #include <cstdlib>
 #include <string>
 
-#include "primo/deformer.h"
-#include "primo/error.h"
-#include "primo/mesh_generators.h"
-#include "primo/scenario.h"
-#include "primo/scenario_deformer.h"
-#include "primo/scenario_solve.h"
+#include "primo/solve/deformer.h"
+#include "primo/util/error.h"
+#include "primo/mesh/mesh_generators.h"
+#include "primo/scenario/scenario.h"
+#include "primo/scenario/scenario_deformer.h"
+#include "primo/scenario/scenario_solve.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   static const primo::Mesh mesh = primo::make_bar(0.2, 1.0, 2, 6);

@@ -9,8 +9,8 @@
 #include <string>
 #include <string_view>
 
-#include "primo/error.h"
-#include "primo/mesh_io.h"
+#include "primo/util/error.h"
+#include "primo/io/mesh_io.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string_view bytes(reinterpret_cast<const char*>(data), size);

@@ -5,8 +5,8 @@
 #include <cstdint>
 #include <string>
 
-#include "primo/error.h"
-#include "primo/scenario.h"
+#include "primo/util/error.h"
+#include "primo/scenario/scenario.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);

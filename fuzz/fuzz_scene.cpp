@@ -1,7 +1,7 @@
 // libFuzzer target for one scene format read through Assimp: the format is
 // PRIMO_FUZZ_EXTENSION (".gltf", ".glb", ".fbx", ".dae", ".3mf"), chosen at compile time. The
 // bytes go through every check before Assimp, Assimp in its child process
-// (src/core/scene_reader_process.h) and, when they read, mesh_from_soup's validation. A
+// (src/core/io/scene/scene_reader_process.h) and, when they read, mesh_from_soup's validation. A
 // primo::Error is the expected outcome for bad bytes, also when Assimp crashes in the child:
 // that is what a user meets. A crash, a sanitizer report or another exception in this process
 // is a finding. Assimp itself is Debian's build, not instrumented: coverage guides the checks
@@ -17,9 +17,9 @@
 #include <string>
 #include <string_view>
 
-#include "../src/core/mesh_import_assimp.h"
-#include "../src/core/scene_reader_process.h"
-#include "primo/error.h"
+#include "../src/core/io/scene/mesh_import_assimp.h"
+#include "../src/core/io/scene/scene_reader_process.h"
+#include "primo/util/error.h"
 
 namespace {
 

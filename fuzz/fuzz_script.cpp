@@ -8,8 +8,8 @@
 #include <cstdlib>
 #include <string>
 
-#include "primo/error.h"
-#include "script.h"
+#include "primo/util/error.h"
+#include "input/script.h"
 
 namespace {
 

@@ -5,9 +5,9 @@
 #include <cstdint>
 #include <string>
 
-#include "primo/error.h"
-#include "primo/mesh_generators.h"
-#include "primo/session.h"
+#include "primo/util/error.h"
+#include "primo/mesh/mesh_generators.h"
+#include "primo/sessions/session.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   static const primo::Mesh bar = primo::make_bar(0.2, 1.0, 2, 10);

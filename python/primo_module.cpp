@@ -17,17 +17,17 @@
 #include <string>
 #include <vector>
 
-#include "primo/deformer.h"
-#include "primo/error.h"
-#include "primo/geometry.h"
-#include "primo/mesh_io.h"
-#include "primo/output_files.h"
-#include "primo/parallel.h"
-#include "primo/scenario.h"
-#include "primo/scenario_deformer.h"
-#include "primo/scenario_solve.h"
-#include "primo/session.h"
-#include "primo/session_replay.h"
+#include "primo/solve/deformer.h"
+#include "primo/util/error.h"
+#include "primo/mesh/geometry.h"
+#include "primo/io/mesh_io.h"
+#include "primo/io/output_files.h"
+#include "primo/util/parallel.h"
+#include "primo/scenario/scenario.h"
+#include "primo/scenario/scenario_deformer.h"
+#include "primo/scenario/scenario_solve.h"
+#include "primo/sessions/session.h"
+#include "primo/sessions/session_replay.h"
 
 namespace py = pybind11;
 using namespace primo;

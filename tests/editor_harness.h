@@ -12,7 +12,7 @@
 #include <thread>
 
 #include "editor.h"
-#include "primo/mesh_generators.h"
+#include "primo/mesh/mesh_generators.h"
 
 namespace primo::editor::harness {
 

@@ -4,9 +4,9 @@
 #include <utility>
 #include <vector>
 
-#include "primo/geometry.h"
-#include "primo/mesh_generators.h"
-#include "primo/session_recorder.h"
+#include "primo/mesh/geometry.h"
+#include "primo/mesh/mesh_generators.h"
+#include "primo/sessions/session_recorder.h"
 
 namespace primo::test {
 namespace {

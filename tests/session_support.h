@@ -4,8 +4,8 @@
 
 #include <string>
 
-#include "primo/mesh.h"
-#include "primo/session.h"
+#include "primo/mesh/mesh.h"
+#include "primo/sessions/session.h"
 
 namespace primo::test {
 

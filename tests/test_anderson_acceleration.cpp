@@ -5,9 +5,9 @@
 #include <Eigen/Geometry>
 #include <cmath>
 
-#include "primo/anderson_acceleration.h"
-#include "primo/error.h"
-#include "primo/global_solver.h"
+#include "primo/solve/anderson_acceleration.h"
+#include "primo/util/error.h"
+#include "primo/solve/global_solver.h"
 
 using namespace primo;
 

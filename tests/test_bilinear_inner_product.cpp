@@ -1,4 +1,4 @@
-#include "primo/bilinear_inner_product.h"
+#include "primo/model/bilinear_inner_product.h"
 
 #include <gtest/gtest.h>
 

@@ -8,7 +8,7 @@
 #include <map>
 #include <random>
 
-#include "primo/block_matrix.h"
+#include "primo/solve/block_matrix.h"
 
 using namespace primo;
 

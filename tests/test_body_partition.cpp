@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <numeric>
 
-#include "primo/body_partition.h"
+#include "primo/solve/body_partition.h"
 
 using namespace primo;
 

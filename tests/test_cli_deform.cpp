@@ -8,7 +8,7 @@
 #include <sstream>
 #include <nlohmann/json.hpp>
 
-#include "primo/mesh_io.h"
+#include "primo/io/mesh_io.h"
 #include "test_support.h"
 
 using primo::test::CommandResult;

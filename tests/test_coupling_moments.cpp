@@ -6,8 +6,8 @@
 #include <Eigen/Geometry>
 #include <random>
 
-#include "primo/coupling_moments.h"
-#include "primo/global_solver.h"
+#include "primo/solve/coupling_moments.h"
+#include "primo/solve/global_solver.h"
 
 using namespace primo;
 

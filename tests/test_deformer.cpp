@@ -2,7 +2,7 @@
 // constraint variants, drag-back, recovery from a collapse (paper Fig. 6), polygon meshes,
 // and the width and plate parameters.
 
-#include "primo/deformer.h"
+#include "primo/solve/deformer.h"
 
 #include <gtest/gtest.h>
 
@@ -10,9 +10,9 @@
 #include <iostream>
 #include <random>
 
-#include "primo/geometry.h"
-#include "primo/local_solver.h"
-#include "primo/mesh_generators.h"
+#include "primo/mesh/geometry.h"
+#include "primo/solve/local_solver.h"
+#include "primo/mesh/mesh_generators.h"
 #include "test_support.h"
 
 using namespace primo;

@@ -6,9 +6,9 @@
 #include <Eigen/Geometry>
 #include <iostream>
 
-#include "primo/deformer.h"
-#include "primo/geometry.h"
-#include "primo/mesh_subdivision.h"
+#include "primo/solve/deformer.h"
+#include "primo/mesh/geometry.h"
+#include "primo/mesh/mesh_subdivision.h"
 #include "test_support.h"
 
 using namespace primo;

@@ -5,10 +5,10 @@
 #include <Eigen/Geometry>
 #include <iostream>
 
-#include "primo/deformer.h"
-#include "primo/drag_predictor.h"
-#include "primo/geometry.h"
-#include "primo/mesh_io.h"
+#include "primo/solve/deformer.h"
+#include "primo/solve/drag_predictor.h"
+#include "primo/mesh/geometry.h"
+#include "primo/io/mesh_io.h"
 #include "test_support.h"
 
 using namespace primo;

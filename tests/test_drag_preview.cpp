@@ -5,11 +5,11 @@
 
 #include <iostream>
 
-#include "primo/deformer.h"
-#include "primo/geometry.h"
-#include "primo/mesh_io.h"
-#include "primo/mesh_order.h"
-#include "primo/parallel.h"
+#include "primo/solve/deformer.h"
+#include "primo/mesh/geometry.h"
+#include "primo/io/mesh_io.h"
+#include "primo/mesh/mesh_order.h"
+#include "primo/util/parallel.h"
 #include "test_support.h"
 
 using namespace primo;

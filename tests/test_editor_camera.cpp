@@ -4,8 +4,8 @@
 
 #include <glm/gtc/constants.hpp>
 
-#include "camera.h"
-#include "gizmo.h"
+#include "view/camera.h"
+#include "view/gizmo.h"
 
 using namespace primo;
 using namespace primo::editor;

@@ -6,8 +6,8 @@
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 #include <vector>
 
-#include "collapse_check.h"
-#include "primo/mesh_generators.h"
+#include "document/collapse_check.h"
+#include "primo/mesh/mesh_generators.h"
 
 using namespace primo;
 using namespace primo::editor;

@@ -4,7 +4,7 @@
 
 #include <limits>
 
-#include "frame_pacer.h"
+#include "view/frame_pacer.h"
 
 using primo::editor::FramePacer;
 

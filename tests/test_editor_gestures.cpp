@@ -5,8 +5,8 @@
 #include <gtest/gtest.h>
 
 #include "editor_harness.h"
-#include "primo/mesh_io.h"
-#include "scenario_bridge.h"
+#include "primo/io/mesh_io.h"
+#include "document/scenario_bridge.h"
 #include "test_support.h"
 
 using namespace primo;

@@ -7,9 +7,9 @@
 #include <Eigen/Geometry>
 
 #include "editor_harness.h"
-#include "euler_angles.h"
-#include "gizmo_orientation.h"
-#include "primo/turn.h"
+#include "view/euler_angles.h"
+#include "view/gizmo_orientation.h"
+#include "primo/model/turn.h"
 
 using namespace primo;
 using namespace primo::editor;

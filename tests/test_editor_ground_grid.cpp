@@ -6,10 +6,10 @@
 
 #include <cmath>
 
-#include "ground_grid.h"
-#include "model_orientation.h"
-#include "primo/mesh_generators.h"
-#include "primo/mesh_io.h"
+#include "view/ground_grid.h"
+#include "document/model_orientation.h"
+#include "primo/mesh/mesh_generators.h"
+#include "primo/io/mesh_io.h"
 #include "test_support.h"
 
 using namespace primo;

@@ -4,8 +4,8 @@
 
 #include <Eigen/Geometry>
 
-#include "edit_state.h"
-#include "primo/mesh_generators.h"
+#include "document/edit_state.h"
+#include "primo/mesh/mesh_generators.h"
 
 using namespace primo;
 using namespace primo::editor;

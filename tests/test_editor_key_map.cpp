@@ -14,12 +14,12 @@
 #include "controls_window.h"
 #include "editor_harness.h"
 #include "headless_imgui.h"
-#include "key_map.h"
+#include "input/key_map.h"
 #include "panels.h"
-#include "preferences.h"
+#include "user_files/preferences.h"
 #include "preferences_window.h"
-#include "primo/geometry.h"
-#include "primo/mesh_generators.h"
+#include "primo/mesh/geometry.h"
+#include "primo/mesh/mesh_generators.h"
 #include "test_support.h"
 
 using namespace primo;

@@ -9,13 +9,13 @@
 #include <random>
 
 #include "editor_harness.h"
-#include "face_colors.h"
-#include "mirror.h"
-#include "primo/deformer.h"
-#include "primo/geometry.h"
-#include "primo/mesh_generators.h"
-#include "primo/mesh_io.h"
-#include "scenario_bridge.h"
+#include "view/face_colors.h"
+#include "document/mirror.h"
+#include "primo/solve/deformer.h"
+#include "primo/mesh/geometry.h"
+#include "primo/mesh/mesh_generators.h"
+#include "primo/io/mesh_io.h"
+#include "document/scenario_bridge.h"
 #include "test_support.h"
 
 using namespace primo;

@@ -10,15 +10,15 @@
 #include <functional>
 #include <glm/gtc/constants.hpp>
 
-#include "document.h"
+#include "document/document.h"
 #include "editor.h"
 #include "editor_harness.h"
-#include "model_orientation.h"
-#include "primo/error.h"
-#include "primo/mesh_generators.h"
-#include "primo/mesh_io.h"
-#include "primo/scenario.h"
-#include "scenario_bridge.h"
+#include "document/model_orientation.h"
+#include "primo/util/error.h"
+#include "primo/mesh/mesh_generators.h"
+#include "primo/io/mesh_io.h"
+#include "primo/scenario/scenario.h"
+#include "document/scenario_bridge.h"
 #include "test_support.h"
 
 namespace fs = std::filesystem;

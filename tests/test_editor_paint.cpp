@@ -4,10 +4,10 @@
 
 #include <cmath>
 
-#include "face_colors.h"
-#include "mesh_topology.h"
-#include "paint.h"
-#include "primo/mesh_generators.h"
+#include "view/face_colors.h"
+#include "document/mesh_topology.h"
+#include "document/paint.h"
+#include "primo/mesh/mesh_generators.h"
 
 using namespace primo::editor;
 

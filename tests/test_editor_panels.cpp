@@ -10,12 +10,12 @@
 #include <map>
 #include <string>
 
-#include "edit_state.h"
+#include "document/edit_state.h"
 #include "headless_imgui.h"
 #include "editor.h"
 #include "panels.h"
-#include "primo/mesh_generators.h"
-#include "shown_value.h"
+#include "primo/mesh/mesh_generators.h"
+#include "view/shown_value.h"
 #include "widgets.h"
 
 using namespace primo;

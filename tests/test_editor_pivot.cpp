@@ -7,15 +7,15 @@
 #include <Eigen/Geometry>
 #include <memory>
 
-#include "document_recorder.h"
+#include "recording/document_recorder.h"
 #include "editor_harness.h"
-#include "pivot.h"
-#include "primo/geometry.h"
-#include "primo/mesh_io.h"
-#include "primo/scenario.h"
-#include "primo/session.h"
-#include "scenario_bridge.h"
-#include "session_bridge.h"
+#include "document/pivot.h"
+#include "primo/mesh/geometry.h"
+#include "primo/io/mesh_io.h"
+#include "primo/scenario/scenario.h"
+#include "primo/sessions/session.h"
+#include "document/scenario_bridge.h"
+#include "recording/session_bridge.h"
 #include "test_support.h"
 
 using namespace primo;

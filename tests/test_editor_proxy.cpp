@@ -9,10 +9,10 @@
 #include <thread>
 #include <utility>
 
-#include "document.h"
-#include "primo/mesh_generators.h"
-#include "primo/mesh_io.h"
-#include "proxy_mesh.h"
+#include "document/document.h"
+#include "primo/mesh/mesh_generators.h"
+#include "primo/io/mesh_io.h"
+#include "document/proxy_mesh.h"
 #include "test_support.h"
 
 using namespace primo;

@@ -1,4 +1,4 @@
-// The --timeout of scripted and --screenshot editor runs (src/editor/run_deadline.h): it runs
+// The --timeout of scripted and --screenshot editor runs (src/editor/input/run_deadline.h): it runs
 // out, and a run stuck past it is ended by the watchdog with one line and status 1. The end to
 // end check, a script that waits too long, is EditorE2E.AScriptThatWaitsTooLongEndsAtItsTimeout.
 
@@ -7,7 +7,7 @@
 #include <chrono>
 #include <thread>
 
-#include "run_deadline.h"
+#include "input/run_deadline.h"
 
 using primo::editor::RunDeadline;
 

@@ -9,16 +9,16 @@
 #include <iostream>
 #include <thread>
 
-#include "document.h"
+#include "document/document.h"
 #include "editor.h"
-#include "paint.h"
-#include "primo/deformer.h"
-#include "primo/error.h"
-#include "primo/geometry.h"
-#include "primo/mesh_generators.h"
-#include "primo/mesh_io.h"
-#include "primo/scenario.h"
-#include "scenario_bridge.h"
+#include "document/paint.h"
+#include "primo/solve/deformer.h"
+#include "primo/util/error.h"
+#include "primo/mesh/geometry.h"
+#include "primo/mesh/mesh_generators.h"
+#include "primo/io/mesh_io.h"
+#include "primo/scenario/scenario.h"
+#include "document/scenario_bridge.h"
 #include "test_support.h"
 
 using namespace primo;

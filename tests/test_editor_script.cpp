@@ -4,8 +4,8 @@
 
 #include <cstdio>
 
-#include "primo/error.h"
-#include "script.h"
+#include "primo/util/error.h"
+#include "input/script.h"
 
 using namespace primo;
 using namespace primo::editor;

@@ -6,11 +6,11 @@
 #include <cmath>
 #include <limits>
 
-#include "mesh_topology.h"
-#include "primo/mesh_generators.h"
-#include "primo/mesh_io.h"
-#include "screen_region.h"
-#include "selection.h"
+#include "document/mesh_topology.h"
+#include "primo/mesh/mesh_generators.h"
+#include "primo/io/mesh_io.h"
+#include "view/screen_region.h"
+#include "document/selection.h"
 
 using namespace primo;
 using namespace primo::editor;

@@ -10,10 +10,10 @@
 #include <thread>
 
 #include "editor_harness.h"
-#include "primo/deformer.h"
-#include "primo/geometry.h"
-#include "primo/mesh_generators.h"
-#include "primo/mesh_io.h"
+#include "primo/solve/deformer.h"
+#include "primo/mesh/geometry.h"
+#include "primo/mesh/mesh_generators.h"
+#include "primo/io/mesh_io.h"
 #include "test_support.h"
 
 using namespace primo;

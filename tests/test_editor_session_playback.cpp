@@ -10,9 +10,9 @@
 #include <thread>
 
 #include "editor.h"
-#include "primo/mesh_generators.h"
-#include "primo/mesh_io.h"
-#include "primo/session.h"
+#include "primo/mesh/mesh_generators.h"
+#include "primo/io/mesh_io.h"
+#include "primo/sessions/session.h"
 #include "session_support.h"
 #include "test_support.h"
 

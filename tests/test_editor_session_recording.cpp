@@ -8,11 +8,11 @@
 #include <string>
 #include <vector>
 
-#include "document_recorder.h"
-#include "paint.h"
-#include "primo/mesh_generators.h"
-#include "primo/session.h"
-#include "session_bridge.h"
+#include "recording/document_recorder.h"
+#include "document/paint.h"
+#include "primo/mesh/mesh_generators.h"
+#include "primo/sessions/session.h"
+#include "recording/session_bridge.h"
 
 using namespace primo;
 using namespace primo::editor;

@@ -6,11 +6,11 @@
 #include <chrono>
 #include <thread>
 
-#include "edit_state.h"
-#include "energy_map.h"
-#include "primo/deformer.h"
-#include "primo/geometry.h"
-#include "primo/mesh_generators.h"
+#include "document/edit_state.h"
+#include "view/energy_map.h"
+#include "primo/solve/deformer.h"
+#include "primo/mesh/geometry.h"
+#include "primo/mesh/mesh_generators.h"
 #include "solver_worker.h"
 #include "test_support.h"
 

@@ -8,16 +8,16 @@
 #include <complex>
 #include <filesystem>
 
-#include "document.h"
-#include "edit_state.h"
-#include "mirror.h"
-#include "primo/mesh_generators.h"
-#include "primo/mesh_io.h"
-#include "primo/scenario.h"
-#include "primo/session.h"
-#include "primo/turn.h"
-#include "scenario_bridge.h"
-#include "session_bridge.h"
+#include "document/document.h"
+#include "document/edit_state.h"
+#include "document/mirror.h"
+#include "primo/mesh/mesh_generators.h"
+#include "primo/io/mesh_io.h"
+#include "primo/scenario/scenario.h"
+#include "primo/sessions/session.h"
+#include "primo/model/turn.h"
+#include "document/scenario_bridge.h"
+#include "recording/session_bridge.h"
 #include "test_support.h"
 
 using namespace primo;

@@ -17,7 +17,7 @@
 #include "editor.h"
 #include "headless_imgui.h"
 #include "panels.h"
-#include "primo/mesh_io.h"
+#include "primo/io/mesh_io.h"
 #include "test_support.h"
 #include "ui_input.h"
 

@@ -2,7 +2,7 @@
 
 #include <gtest/gtest.h>
 
-#include "undo_stack.h"
+#include "document/undo_stack.h"
 
 using namespace primo::editor;
 

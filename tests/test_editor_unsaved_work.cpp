@@ -9,13 +9,13 @@
 #include <filesystem>
 #include <thread>
 
-#include "autosave.h"
+#include "user_files/autosave.h"
 #include "editor.h"
-#include "primo/mesh_generators.h"
-#include "primo/mesh_io.h"
-#include "primo/scenario.h"
-#include "primo/utf8.h"
-#include "recent_files.h"
+#include "primo/mesh/mesh_generators.h"
+#include "primo/io/mesh_io.h"
+#include "primo/scenario/scenario.h"
+#include "primo/util/utf8.h"
+#include "user_files/recent_files.h"
 #include "test_support.h"
 
 using namespace primo;

@@ -21,10 +21,10 @@
 #include <thread>
 #include <vector>
 
-#include "primo/error.h"
-#include "primo/mesh_io.h"
-#include "primo/output_files.h"
-#include "primo/session.h"
+#include "primo/util/error.h"
+#include "primo/io/mesh_io.h"
+#include "primo/io/output_files.h"
+#include "primo/sessions/session.h"
 #include "session_support.h"
 #include "test_support.h"
 

@@ -1,5 +1,5 @@
 // An FBX file's records and model tree are checked before Assimp reads them
-// (src/core/fbx_checks.h): a model that is its own parent, a cycle, an instancing bomb, a
+// (src/core/io/scene/fbx_checks.h): a model that is its own parent, a cycle, an instancing bomb, a
 // tree or a nesting too deep, a record running past its parent, in binary and ASCII files,
 // are refused in one line naming the rule; real files still load.
 
@@ -10,10 +10,10 @@
 #include <string>
 #include <vector>
 
-#include "../src/core/fbx_checks.h"
-#include "../src/core/mesh_import_assimp.h"
-#include "primo/error.h"
-#include "primo/mesh_io.h"
+#include "../src/core/io/scene/fbx_checks.h"
+#include "../src/core/io/scene/mesh_import_assimp.h"
+#include "primo/util/error.h"
+#include "primo/io/mesh_io.h"
 #include "test_support.h"
 
 namespace primo {

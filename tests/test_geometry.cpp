@@ -5,8 +5,8 @@
 #include <stdexcept>
 #include <vector>
 
-#include "primo/geometry.h"
-#include "primo/mesh.h"
+#include "primo/mesh/geometry.h"
+#include "primo/mesh/mesh.h"
 
 using namespace primo;
 

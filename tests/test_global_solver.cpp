@@ -2,14 +2,14 @@
 // on a background thread, turning a reused factor with the bodies, and a reused step's
 // gradient.
 
-#include "primo/global_solver.h"
+#include "primo/solve/global_solver.h"
 
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
 
-#include "primo/deformer.h"
-#include "primo/parallel.h"
+#include "primo/solve/deformer.h"
+#include "primo/util/parallel.h"
 #include "test_support.h"
 
 using namespace primo;

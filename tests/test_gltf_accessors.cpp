@@ -1,5 +1,5 @@
 // A glTF asset's buffers, buffer views, accessors, primitives, skins and animation samplers are
-// checked before Assimp reads them (src/core/gltf_accessor_checks.h): each file below made
+// checked before Assimp reads them (src/core/io/scene/gltf_accessor_checks.h): each file below made
 // Assimp 5.2 allocate gigabytes, crash, write or read past its arrays, read overlapping or
 // foreign bytes, or drop a face without a word. Each is refused in one line naming the rule,
 // whether its bytes come in a data: URI, a .glb's binary chunk or a .bin file beside the .gltf,
@@ -13,9 +13,9 @@
 #include <string>
 #include <vector>
 
-#include "primo/error.h"
-#include "primo/mesh_generators.h"
-#include "primo/mesh_io.h"
+#include "primo/util/error.h"
+#include "primo/mesh/mesh_generators.h"
+#include "primo/io/mesh_io.h"
 #include "test_support.h"
 
 namespace primo {

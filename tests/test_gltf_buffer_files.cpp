@@ -9,9 +9,9 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "../src/core/gltf_buffer_files.h"
-#include "primo/error.h"
-#include "primo/mesh_io.h"
+#include "../src/core/io/scene/gltf_buffer_files.h"
+#include "primo/util/error.h"
+#include "primo/io/mesh_io.h"
 #include "test_support.h"
 
 namespace fs = std::filesystem;

@@ -1,6 +1,6 @@
 // The hierarchical solver: its clusters, and its results against the flat global solver.
 
-#include "primo/hierarchical_solver.h"
+#include "primo/solve/hierarchical_solver.h"
 
 #include <gtest/gtest.h>
 
@@ -12,10 +12,10 @@
 #include <set>
 
 #include "bench/reach_pose.h"
-#include "primo/deformer.h"
-#include "primo/geometry.h"
-#include "primo/mesh_generators.h"
-#include "primo/mesh_io.h"
+#include "primo/solve/deformer.h"
+#include "primo/mesh/geometry.h"
+#include "primo/mesh/mesh_generators.h"
+#include "primo/io/mesh_io.h"
 #include "test_support.h"
 
 using namespace primo;

@@ -1,4 +1,4 @@
-#include "primo/horn.h"
+#include "primo/solve/horn.h"
 
 #include <gtest/gtest.h>
 

@@ -18,16 +18,16 @@
 #include <thread>
 #include <vector>
 
-#include "preferences.h"
-#include "primo/deformer.h"
-#include "primo/error.h"
-#include "primo/input_files.h"
-#include "primo/mesh_generators.h"
-#include "primo/mesh_io.h"
-#include "primo/scenario.h"
-#include "primo/session.h"
-#include "primo/session_replay.h"
-#include "script.h"
+#include "user_files/preferences.h"
+#include "primo/solve/deformer.h"
+#include "primo/util/error.h"
+#include "primo/io/input_files.h"
+#include "primo/mesh/mesh_generators.h"
+#include "primo/io/mesh_io.h"
+#include "primo/scenario/scenario.h"
+#include "primo/sessions/session.h"
+#include "primo/sessions/session_replay.h"
+#include "input/script.h"
 #include "session_support.h"
 #include "test_support.h"
 

@@ -1,5 +1,5 @@
 // Hostile mesh files: the inputs a sanitizer-built fuzzing pass crashed, hung or
-// misread OpenMesh's readers with, now read by PriMo's own (src/core/mesh_readers.cpp). Each
+// misread OpenMesh's readers with, now read by PriMo's own (src/core/io/mesh_readers.cpp). Each
 // must give one clear Error naming the file, or the right mesh; none may crash, hang or load
 // short. fuzz/ holds the fuzz targets that found them; docs/reliability.md lists them.
 
@@ -10,9 +10,9 @@
 #include <string>
 #include <vector>
 
-#include "primo/error.h"
-#include "primo/mesh_generators.h"
-#include "primo/mesh_io.h"
+#include "primo/util/error.h"
+#include "primo/mesh/mesh_generators.h"
+#include "primo/io/mesh_io.h"
 #include "test_support.h"
 
 namespace {

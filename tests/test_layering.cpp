@@ -20,7 +20,7 @@ namespace fs = std::filesystem;
 
 // The folders that make up each layer, relative to the repository.
 const std::vector<std::pair<std::string, std::string>> kFolders = {
-    {"include/primo", "core"},  // primo/session*.h belong to "sessions", see layer_of_header
+    {"include/primo", "core"},  // primo/sessions/ belong to "sessions", see layer_of_header
     {"src/core", "core"},
     {"src/datadir", "datadir"},  // where an installed primo finds its shaders and assets
     {"src/sessions", "sessions"},

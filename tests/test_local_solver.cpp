@@ -1,6 +1,6 @@
 // Local shape matching: single matches, the plain sweep, and the planned (packed) sweep.
 
-#include "primo/local_solver.h"
+#include "primo/solve/local_solver.h"
 
 #include <gtest/gtest.h>
 
@@ -8,8 +8,8 @@
 #include <cmath>
 #include <random>
 
-#include "primo/mesh_generators.h"
-#include "primo/prism_layer.h"
+#include "primo/mesh/mesh_generators.h"
+#include "primo/model/prism_layer.h"
 
 using namespace primo;
 

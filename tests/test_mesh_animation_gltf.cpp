@@ -1,8 +1,8 @@
-// Vertex animations as glTF morph targets (primo/mesh_animation_gltf.h), read back through
+// Vertex animations as glTF morph targets (primo/io/mesh_animation_gltf.h), read back through
 // Assimp as another tool reads them: targets sparse where few vertices move, dense otherwise,
 // the weights and times of the animation, and the rest mesh as save_mesh writes it.
 
-#include "primo/mesh_animation_gltf.h"
+#include "primo/io/mesh_animation_gltf.h"
 
 #include <gtest/gtest.h>
 
@@ -13,10 +13,10 @@
 #include <limits>
 #include <nlohmann/json.hpp>
 
-#include "primo/error.h"
-#include "primo/mesh_generators.h"
-#include "primo/mesh_io.h"
-#include "primo/output_files.h"
+#include "primo/util/error.h"
+#include "primo/mesh/mesh_generators.h"
+#include "primo/io/mesh_io.h"
+#include "primo/io/output_files.h"
 #include "test_support.h"
 
 using namespace primo;

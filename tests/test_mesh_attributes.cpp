@@ -14,10 +14,10 @@
 #include <set>
 #include <sstream>
 
-#include "primo/error.h"
-#include "primo/mesh_attributes.h"
-#include "primo/mesh_import.h"
-#include "primo/mesh_io.h"
+#include "primo/util/error.h"
+#include "primo/mesh/mesh_attributes.h"
+#include "primo/io/mesh_import.h"
+#include "primo/io/mesh_io.h"
 #include "test_support.h"
 
 using primo::test::read_text;

@@ -23,14 +23,14 @@
 #include <random>
 #include <set>
 
-#include "../src/core/mesh_import_assimp.h"
-#include "../src/core/scene_signature.h"
-#include "document.h"
-#include "primo/error.h"
-#include "primo/mesh_generators.h"
-#include "primo/mesh_import.h"
-#include "primo/mesh_io.h"
-#include "primo/output_files.h"
+#include "../src/core/io/scene/mesh_import_assimp.h"
+#include "../src/core/io/scene/scene_signature.h"
+#include "document/document.h"
+#include "primo/util/error.h"
+#include "primo/mesh/mesh_generators.h"
+#include "primo/io/mesh_import.h"
+#include "primo/io/mesh_io.h"
+#include "primo/io/output_files.h"
 #include "test_support.h"
 
 namespace fs = std::filesystem;

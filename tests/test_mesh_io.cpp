@@ -1,7 +1,7 @@
 // OpenMesh IO before the mesh type: the binary-OFF test writes one with OpenMesh directly.
 // clang-format off
 #include <OpenMesh/Core/IO/MeshIO.hh>
-#include "primo/mesh_io.h"
+#include "primo/io/mesh_io.h"
 // clang-format on
 
 #include <gtest/gtest.h>
@@ -15,8 +15,8 @@
 #include <string>
 #include <vector>
 
-#include "primo/error.h"
-#include "primo/geometry.h"
+#include "primo/util/error.h"
+#include "primo/mesh/geometry.h"
 #include "test_support.h"
 
 namespace fs = std::filesystem;

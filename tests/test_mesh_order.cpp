@@ -2,7 +2,7 @@
 // lists the surface in, neighbours near each other, and a deformer whose results do not depend
 // on the file's order, bit for bit, on any number of threads.
 
-#include "primo/mesh_order.h"
+#include "primo/mesh/mesh_order.h"
 
 #include <gtest/gtest.h>
 
@@ -11,9 +11,9 @@
 #include <map>
 #include <set>
 
-#include "primo/deformer.h"
-#include "primo/mesh_generators.h"
-#include "primo/parallel.h"
+#include "primo/solve/deformer.h"
+#include "primo/mesh/mesh_generators.h"
+#include "primo/util/parallel.h"
 #include "test_support.h"
 
 using namespace primo;

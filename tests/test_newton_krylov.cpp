@@ -8,13 +8,13 @@
 #include <iostream>
 #include <random>
 
-#include "primo/deformer.h"
-#include "primo/geometry.h"
-#include "primo/hierarchical_solver.h"
-#include "primo/mesh_io.h"
-#include "primo/newton_krylov.h"
-#include "primo/rigid_hessian.h"
-#include "primo/rigid_multigrid.h"
+#include "primo/solve/deformer.h"
+#include "primo/mesh/geometry.h"
+#include "primo/solve/hierarchical_solver.h"
+#include "primo/io/mesh_io.h"
+#include "primo/solve/newton_krylov.h"
+#include "primo/solve/rigid_hessian.h"
+#include "primo/solve/rigid_multigrid.h"
 #include "test_support.h"
 
 using namespace primo;

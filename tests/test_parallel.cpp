@@ -6,11 +6,11 @@
 #include <cstring>
 #include <functional>
 
-#include "primo/deformer.h"
-#include "primo/geometry.h"
-#include "primo/local_solver.h"
-#include "primo/mesh.h"
-#include "primo/parallel.h"
+#include "primo/solve/deformer.h"
+#include "primo/mesh/geometry.h"
+#include "primo/solve/local_solver.h"
+#include "primo/mesh/mesh.h"
+#include "primo/util/parallel.h"
 #include "test_support.h"
 
 using namespace primo;

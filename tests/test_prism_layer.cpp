@@ -1,14 +1,14 @@
-#include "primo/prism_layer.h"
+#include "primo/model/prism_layer.h"
 
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
 #include <random>
 
-#include "primo/deformer.h"
-#include "primo/error.h"
-#include "primo/geometry.h"
-#include "primo/mesh_generators.h"
+#include "primo/solve/deformer.h"
+#include "primo/util/error.h"
+#include "primo/mesh/geometry.h"
+#include "primo/mesh/mesh_generators.h"
 
 using namespace primo;
 

@@ -7,9 +7,9 @@
 #include <fstream>
 #include <sstream>
 
-#include "primo/error.h"
-#include "primo/mesh_generators.h"
-#include "primo/mesh_io.h"
+#include "primo/util/error.h"
+#include "primo/mesh/mesh_generators.h"
+#include "primo/io/mesh_io.h"
 #include "quality/cgal_deformation.h"
 #include "quality/mesh_quality.h"
 #include "quality/self_intersections.h"

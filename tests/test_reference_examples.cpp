@@ -7,10 +7,10 @@
 #include <fstream>
 #include <sstream>
 
-#include "primo/deformer.h"
-#include "primo/geometry.h"
-#include "primo/mesh_io.h"
-#include "primo/scenario.h"
+#include "primo/solve/deformer.h"
+#include "primo/mesh/geometry.h"
+#include "primo/io/mesh_io.h"
+#include "primo/scenario/scenario.h"
 #include "test_support.h"
 
 using namespace primo;

@@ -12,10 +12,10 @@
 #include <string>
 #include <vector>
 
-#include "primo/deformer.h"
-#include "primo/error.h"
-#include "primo/mesh_generators.h"
-#include "primo/mesh_io.h"
+#include "primo/solve/deformer.h"
+#include "primo/util/error.h"
+#include "primo/mesh/mesh_generators.h"
+#include "primo/io/mesh_io.h"
 #include "session_support.h"
 #include "test_support.h"
 

@@ -12,12 +12,12 @@
 #include <string>
 #include <vector>
 
-#include "primo/error.h"
-#include "primo/geometry.h"
-#include "primo/mesh.h"
-#include "primo/mesh_generators.h"
-#include "primo/prism_layer.h"
-#include "primo/scenario.h"
+#include "primo/util/error.h"
+#include "primo/mesh/geometry.h"
+#include "primo/mesh/mesh.h"
+#include "primo/mesh/mesh_generators.h"
+#include "primo/model/prism_layer.h"
+#include "primo/scenario/scenario.h"
 #include "test_support.h"
 
 namespace fs = std::filesystem;

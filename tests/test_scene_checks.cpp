@@ -14,11 +14,11 @@
 #include <utility>
 #include <vector>
 
-#include "../src/core/collada_checks.h"
-#include "../src/core/threemf_checks.h"
-#include "primo/error.h"
-#include "primo/mesh_import.h"
-#include "primo/mesh_io.h"
+#include "../src/core/io/scene/collada_checks.h"
+#include "../src/core/io/scene/threemf_checks.h"
+#include "primo/util/error.h"
+#include "primo/io/mesh_import.h"
+#include "primo/io/mesh_io.h"
 #include "test_support.h"
 
 using primo::test::expect_refused_from_file_and_bytes;

@@ -1,4 +1,4 @@
-// Assimp runs in a child process (src/core/scene_reader_process.h): what the child sends back
+// Assimp runs in a child process (src/core/io/scene/scene_reader_process.h): what the child sends back
 // arrives bit for bit, and a crash, a memory bomb or a hang in it is one line naming the file
 // while this process goes on.
 
@@ -14,9 +14,9 @@
 
 #include <assimp/Importer.hpp>
 
-#include "../src/core/scene_reader_process.h"
-#include "primo/error.h"
-#include "primo/mesh_io.h"
+#include "../src/core/io/scene/scene_reader_process.h"
+#include "primo/util/error.h"
+#include "primo/io/mesh_io.h"
 #include "test_support.h"
 
 namespace primo {

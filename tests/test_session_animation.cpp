@@ -1,9 +1,9 @@
-// A recorded session as one animated glTF (primo/session_animation.h, `primo replay
+// A recorded session as one animated glTF (primo/sessions/session_animation.h, `primo replay
 // --animation`): read back through Assimp, rest + target i is the replay's frame i, the
 // weights show one frame at a time at the session's times; a request too large is refused
 // before anything is solved.
 
-#include "primo/session_animation.h"
+#include "primo/sessions/session_animation.h"
 
 #include <gtest/gtest.h>
 
@@ -11,10 +11,10 @@
 #include <assimp/scene.h>
 #include <filesystem>
 
-#include "primo/mesh_generators.h"
-#include "primo/mesh_io.h"
-#include "primo/session.h"
-#include "primo/session_replay.h"
+#include "primo/mesh/mesh_generators.h"
+#include "primo/io/mesh_io.h"
+#include "primo/sessions/session.h"
+#include "primo/sessions/session_replay.h"
 #include "session_support.h"
 #include "test_support.h"
 

@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
-#include "primo/error.h"
-#include "primo/mesh_io.h"
-#include "primo/session.h"
+#include "primo/util/error.h"
+#include "primo/io/mesh_io.h"
+#include "primo/sessions/session.h"
 #include "session_support.h"
 #include "test_support.h"
 

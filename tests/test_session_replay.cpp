@@ -8,10 +8,10 @@
 #include <cstdlib>
 #include <filesystem>
 
-#include "primo/mesh_generators.h"
-#include "primo/mesh_io.h"
-#include "primo/session.h"
-#include "primo/session_replay.h"
+#include "primo/mesh/mesh_generators.h"
+#include "primo/io/mesh_io.h"
+#include "primo/sessions/session.h"
+#include "primo/sessions/session_replay.h"
 #include "session_support.h"
 #include "test_support.h"
 

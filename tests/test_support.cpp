@@ -18,9 +18,9 @@
 
 #include <gtest/gtest.h>
 
-#include "../src/core/mesh_import_assimp.h"
-#include "primo/error.h"
-#include "primo/mesh_io.h"
+#include "../src/core/io/scene/mesh_import_assimp.h"
+#include "primo/util/error.h"
+#include "primo/io/mesh_io.h"
 
 namespace fs = std::filesystem;
 
@@ -172,7 +172,7 @@ CommandResult run_primo_within(int seconds, const std::string& arguments) {
 #include <Eigen/Geometry>
 #include <cmath>
 
-#include "primo/geometry.h"
+#include "primo/mesh/geometry.h"
 
 namespace primo::test {
 

@@ -63,10 +63,10 @@ void expect_refused_from_file_and_bytes(const std::string& path, const std::stri
 #include <functional>
 #include <vector>
 
-#include "primo/constraints.h"
-#include "primo/mesh.h"
-#include "primo/mesh_generators.h"
-#include "primo/rigid_system.h"
+#include "primo/model/constraints.h"
+#include "primo/mesh/mesh.h"
+#include "primo/mesh/mesh_generators.h"
+#include "primo/model/rigid_system.h"
 
 namespace primo::test {
 

@@ -8,11 +8,11 @@
 #include <complex>
 #include <iostream>
 
-#include "primo/deformer.h"
-#include "primo/error.h"
-#include "primo/mesh_generators.h"
-#include "primo/mesh_io.h"
-#include "primo/turn.h"
+#include "primo/solve/deformer.h"
+#include "primo/util/error.h"
+#include "primo/mesh/mesh_generators.h"
+#include "primo/io/mesh_io.h"
+#include "primo/model/turn.h"
 #include <nlohmann/json.hpp>
 
 #include "test_support.h"

@@ -1,14 +1,14 @@
-// File names are bytes, JSON strings text (primo/utf8.h): what is not UTF-8 is told apart,
+// File names are bytes, JSON strings text (primo/util/utf8.h): what is not UTF-8 is told apart,
 // shown as %XX, and refused in words where a scenario or a session would have to hold it.
 
 #include <gtest/gtest.h>
 
 #include <string>
 
-#include "primo/error.h"
-#include "primo/scenario.h"
-#include "primo/session.h"
-#include "primo/utf8.h"
+#include "primo/util/error.h"
+#include "primo/scenario/scenario.h"
+#include "primo/sessions/session.h"
+#include "primo/util/utf8.h"
 
 namespace primo {
 namespace {

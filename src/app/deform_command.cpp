@@ -10,14 +10,14 @@
 
 #include "commands.h"
 #include "rethrow_naming.h"
-#include "primo/deformer.h"
-#include "primo/error.h"
-#include "primo/mesh_import.h"
-#include "primo/mesh_io.h"
-#include "primo/output_files.h"
-#include "primo/scenario.h"
-#include "primo/scenario_deformer.h"
-#include "primo/scenario_solve.h"
+#include "primo/solve/deformer.h"
+#include "primo/util/error.h"
+#include "primo/io/mesh_import.h"
+#include "primo/io/mesh_io.h"
+#include "primo/io/output_files.h"
+#include "primo/scenario/scenario.h"
+#include "primo/scenario/scenario_deformer.h"
+#include "primo/scenario/scenario_solve.h"
 
 namespace primo::app {
 namespace {

@@ -8,14 +8,14 @@
 #include "commands.h"
 #include "number_options.h"
 #include "paths.h"
-#include "primo/error.h"
-#include "primo/input_files.h"
+#include "primo/util/error.h"
+#include "primo/io/input_files.h"
 
 namespace primo::app {
 namespace {
 
 // The script is read by the window before anything opens; a named pipe or a device there
-// would block it, so the file is checked here as every input is (primo/input_files.h).
+// would block it, so the file is checked here as every input is (primo/io/input_files.h).
 const CLI::Validator kInputFile(
     [](std::string& path) -> std::string {
       try {

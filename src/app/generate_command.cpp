@@ -10,12 +10,12 @@
 
 #include "commands.h"
 #include "number_options.h"
-#include "primo/error.h"
-#include "primo/mesh_generators.h"
-#include "primo/mesh_io.h"
-#include "primo/mesh_subdivision.h"
-#include "primo/output_files.h"
-#include "primo/scenario.h"
+#include "primo/util/error.h"
+#include "primo/mesh/mesh_generators.h"
+#include "primo/io/mesh_io.h"
+#include "primo/mesh/mesh_subdivision.h"
+#include "primo/io/output_files.h"
+#include "primo/scenario/scenario.h"
 
 namespace primo::app {
 namespace {

@@ -9,8 +9,8 @@
 #include "commands.h"
 #include "huge_pages.h"
 #include "number_options.h"
-#include "primo/error.h"
-#include "primo/parallel.h"
+#include "primo/util/error.h"
+#include "primo/util/parallel.h"
 
 namespace {
 

@@ -8,8 +8,8 @@
 #include <string>
 
 #include "commands.h"
-#include "primo/mesh_io.h"
-#include "primo/output_files.h"
+#include "primo/io/mesh_io.h"
+#include "primo/io/output_files.h"
 #include "quality/mesh_quality.h"
 #include "quality/quality_report.h"
 

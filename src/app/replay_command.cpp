@@ -22,14 +22,14 @@
 
 #include "commands.h"
 #include "number_options.h"
-#include "primo/error.h"
-#include "primo/mesh_import.h"
-#include "primo/mesh_io.h"
-#include "primo/output_files.h"
-#include "primo/session.h"
-#include "primo/session_animation.h"
-#include "primo/session_mapping.h"
-#include "primo/session_replay.h"
+#include "primo/util/error.h"
+#include "primo/io/mesh_import.h"
+#include "primo/io/mesh_io.h"
+#include "primo/io/output_files.h"
+#include "primo/sessions/session.h"
+#include "primo/sessions/session_animation.h"
+#include "primo/sessions/session_mapping.h"
+#include "primo/sessions/session_replay.h"
 #include "rethrow_naming.h"
 
 namespace primo::app {

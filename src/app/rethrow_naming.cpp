@@ -2,7 +2,7 @@
 
 #include <new>
 
-#include "primo/error.h"
+#include "primo/util/error.h"
 
 namespace primo::app {
 

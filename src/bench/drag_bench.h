@@ -14,8 +14,8 @@
 #include <cstdint>
 #include <string>
 
-#include "primo/deformer.h"
-#include "primo/hierarchical_solver.h"
+#include "primo/solve/deformer.h"
+#include "primo/solve/hierarchical_solver.h"
 
 namespace primo::bench {
 

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 
-#include "primo/hierarchical_solver.h"
+#include "primo/solve/hierarchical_solver.h"
 
 namespace primo::bench {
 

@@ -4,8 +4,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "primo/deformer.h"
-#include "primo/global_solver.h"
+#include "primo/solve/deformer.h"
+#include "primo/solve/global_solver.h"
 
 namespace primo::bench {
 

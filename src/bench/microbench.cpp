@@ -33,16 +33,16 @@
 #include <random>
 #include <vector>
 
-#include "primo/cluster_hierarchy.h"
-#include "primo/deformer.h"
-#include "primo/drag_predictor.h"
-#include "primo/geometry.h"
-#include "primo/global_solver.h"
-#include "primo/horn.h"
-#include "primo/local_solver.h"
-#include "primo/mesh_generators.h"
-#include "primo/rigid_hessian.h"
-#include "primo/rigid_multigrid.h"
+#include "primo/solve/cluster_hierarchy.h"
+#include "primo/solve/deformer.h"
+#include "primo/solve/drag_predictor.h"
+#include "primo/mesh/geometry.h"
+#include "primo/solve/global_solver.h"
+#include "primo/solve/horn.h"
+#include "primo/solve/local_solver.h"
+#include "primo/mesh/mesh_generators.h"
+#include "primo/solve/rigid_hessian.h"
+#include "primo/solve/rigid_multigrid.h"
 
 namespace {
 

@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "primo/constraints.h"
+#include "primo/model/constraints.h"
 #include "quality/cgal_deformation.h"
 
 namespace primo::bench {

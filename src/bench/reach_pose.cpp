@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "primo/error.h"
-#include "primo/geometry.h"
+#include "primo/util/error.h"
+#include "primo/mesh/geometry.h"
 
 namespace primo::bench {
 

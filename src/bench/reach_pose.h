@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "primo/constraints.h"
-#include "primo/mesh.h"
+#include "primo/model/constraints.h"
+#include "primo/mesh/mesh.h"
 
 namespace primo::bench {
 

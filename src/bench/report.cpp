@@ -4,7 +4,7 @@
 #include <cmath>
 #include <filesystem>
 
-#include "primo/error.h"
+#include "primo/util/error.h"
 
 namespace fs = std::filesystem;
 

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "primo/deformer.h"
+#include "primo/solve/deformer.h"
 
 namespace primo::bench {
 

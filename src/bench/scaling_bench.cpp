@@ -17,8 +17,8 @@
 
 #include "inputs.h"
 #include "machine.h"
-#include "primo/error.h"
-#include "primo/output_files.h"
+#include "primo/util/error.h"
+#include "primo/io/output_files.h"
 #include "report.h"
 
 extern char** environ;

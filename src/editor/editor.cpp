@@ -8,12 +8,12 @@
 #include <filesystem>
 #include <limits>
 
-#include "primo/output_files.h"
-#include "primo/error.h"
-#include "autosave.h"
-#include "pivot.h"
-#include "primo/mesh_io.h"
-#include "scenario_bridge.h"
+#include "primo/io/output_files.h"
+#include "primo/util/error.h"
+#include "user_files/autosave.h"
+#include "document/pivot.h"
+#include "primo/io/mesh_io.h"
+#include "document/scenario_bridge.h"
 
 namespace primo::editor {
 namespace {

@@ -14,17 +14,17 @@
 #include <string>
 #include <vector>
 
-#include "camera.h"
-#include "document.h"
-#include "gizmo.h"
-#include "gizmo_orientation.h"
-#include "input.h"
-#include "mirror.h"
-#include "paint.h"
-#include "preferences.h"
-#include "recent_files.h"
-#include "screen_region.h"
-#include "session_control.h"
+#include "view/camera.h"
+#include "document/document.h"
+#include "view/gizmo.h"
+#include "view/gizmo_orientation.h"
+#include "input/input.h"
+#include "document/mirror.h"
+#include "document/paint.h"
+#include "user_files/preferences.h"
+#include "user_files/recent_files.h"
+#include "view/screen_region.h"
+#include "recording/session_control.h"
 #include "solver_worker.h"
 
 namespace primo::editor {

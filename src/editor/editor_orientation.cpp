@@ -3,7 +3,7 @@
 // the current view the model's front.
 
 #include "editor.h"
-#include "model_orientation.h"
+#include "document/model_orientation.h"
 
 namespace primo::editor {
 

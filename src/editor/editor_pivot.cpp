@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "editor.h"
-#include "pivot.h"
+#include "document/pivot.h"
 
 namespace primo::editor {
 namespace {

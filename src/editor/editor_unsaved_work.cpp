@@ -1,7 +1,7 @@
 // The Editor's handling of unsaved work: asking before it is discarded, autosaving it, and
 // recovering it (editor.h, "Unsaved work"; docs/editor.md, "Files").
 
-#include "autosave.h"
+#include "user_files/autosave.h"
 #include "editor.h"
 
 #include <chrono>

@@ -12,9 +12,9 @@
 #include <unistd.h>
 #endif
 
-#include "energy_map.h"
-#include "primo/parallel.h"
-#include "primo/scenario_solve.h"
+#include "view/energy_map.h"
+#include "primo/util/parallel.h"
+#include "primo/scenario/scenario_solve.h"
 
 namespace primo::editor {
 namespace {

@@ -20,16 +20,16 @@
 #include <thread>
 #include <vector>
 
-#include "edit_state.h"
-#include "mesh_topology.h"
-#include "primo/deformer.h"
-#include "primo/scenario.h"
+#include "document/edit_state.h"
+#include "document/mesh_topology.h"
+#include "primo/solve/deformer.h"
+#include "primo/scenario/scenario.h"
 
 namespace primo::editor {
 
 // The method the editor solves with: the scenario's solver.method when it names one, else what
 // `primo deform` picks by default (global Newton up to 20,000 faces, hierarchical above), so
-// that both end at the same result. It is scenario_solve_method (primo/scenario_solve.h),
+// that both end at the same result. It is scenario_solve_method (primo/scenario/scenario_solve.h),
 // which `primo deform` and `primo replay` use too.
 SolveMethod interactive_solve_method(SolverMethod requested, int n_faces);
 
@@ -46,7 +46,7 @@ struct SolverProblem {
 struct SolverTargets {
   std::vector<RigidTransform> handles;  // one per engine handle
   std::vector<Vec3> forces;             // one per engine force
-  // The handles' rotations' whole turns (primo/turn.h); none or nullopt: continue the
+  // The handles' rotations' whole turns (primo/model/turn.h); none or nullopt: continue the
   // handle's turn.
   std::vector<std::optional<Vec3>> turns = {};
 };

@@ -11,7 +11,7 @@
 
 #include <string>
 
-#include "primo/error.h"
+#include "primo/util/error.h"
 
 namespace primo::quality {
 namespace {

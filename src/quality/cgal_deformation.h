@@ -5,7 +5,7 @@
 
 #include <vector>
 
-#include "primo/mesh.h"
+#include "primo/mesh/mesh.h"
 #include "stopwatch.h"
 
 namespace primo::quality {

@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "primo/error.h"
-#include "primo/geometry.h"
+#include "primo/util/error.h"
+#include "primo/mesh/geometry.h"
 #include "self_intersections.h"
 
 namespace primo::quality {

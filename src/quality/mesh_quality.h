@@ -8,7 +8,7 @@
 #include <optional>
 #include <string>
 
-#include "primo/mesh.h"
+#include "primo/mesh/mesh.h"
 
 namespace primo::quality {
 

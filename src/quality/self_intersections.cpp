@@ -16,7 +16,7 @@
 #include <iterator>
 #include <string>
 
-#include "primo/error.h"
+#include "primo/util/error.h"
 
 namespace primo::quality {
 namespace {

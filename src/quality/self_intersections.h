@@ -5,7 +5,7 @@
 #include <utility>
 #include <vector>
 
-#include "primo/mesh.h"
+#include "primo/mesh/mesh.h"
 
 namespace primo::quality {
 

@@ -1,13 +1,13 @@
-#include "primo/session_animation.h"
+#include "primo/sessions/session_animation.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 
-#include "primo/error.h"
-#include "primo/output_files.h"
-#include "primo/session_replay.h"
+#include "primo/util/error.h"
+#include "primo/io/output_files.h"
+#include "primo/sessions/session_replay.h"
 
 namespace primo {
 namespace {

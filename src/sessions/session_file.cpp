@@ -7,13 +7,13 @@
 #include <initializer_list>
 #include <nlohmann/json.hpp>
 
-#include "primo/error.h"
-#include "primo/utf8.h"
-#include "primo/input_files.h"
-#include "primo/json_limits.h"
-#include "primo/output_files.h"
-#include "primo/session.h"
-#include "primo/turn.h"
+#include "primo/util/error.h"
+#include "primo/util/utf8.h"
+#include "primo/io/input_files.h"
+#include "primo/io/json_limits.h"
+#include "primo/io/output_files.h"
+#include "primo/sessions/session.h"
+#include "primo/model/turn.h"
 
 namespace primo {
 namespace {

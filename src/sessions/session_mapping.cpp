@@ -1,11 +1,11 @@
-#include "primo/session_mapping.h"
+#include "primo/sessions/session_mapping.h"
 
 #include <algorithm>
 #include <limits>
 #include <memory>
 #include <utility>
 
-#include "primo/error.h"
+#include "primo/util/error.h"
 
 namespace primo {
 namespace {

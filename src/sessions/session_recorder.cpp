@@ -1,4 +1,4 @@
-#include "primo/session_recorder.h"
+#include "primo/sessions/session_recorder.h"
 
 #include <algorithm>
 

@@ -1,12 +1,12 @@
-#include "primo/session_replay.h"
+#include "primo/sessions/session_replay.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <memory>
 
-#include "primo/error.h"
-#include "primo/scenario_solve.h"
+#include "primo/util/error.h"
+#include "primo/scenario/scenario_solve.h"
 
 namespace primo {
 namespace {

@@ -1,4 +1,4 @@
-#include "primo/session_state.h"
+#include "primo/sessions/session_state.h"
 
 #include <algorithm>
 

@@ -5,8 +5,8 @@
 #include <algorithm>
 #include <memory>
 
-#include "primo/error.h"
-#include "primo/session.h"
+#include "primo/util/error.h"
+#include "primo/sessions/session.h"
 
 namespace primo {
 namespace {

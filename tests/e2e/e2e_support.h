@@ -12,7 +12,7 @@
 #include <sstream>
 #include <string>
 
-#include "primo/mesh.h"
+#include "primo/mesh/mesh.h"
 
 namespace primo::e2e {
 

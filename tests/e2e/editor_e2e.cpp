@@ -23,9 +23,9 @@
 #include <thread>
 
 #include "e2e_support.h"
-#include "primo/geometry.h"
-#include "primo/mesh_io.h"
-#include "primo/scenario.h"
+#include "primo/mesh/geometry.h"
+#include "primo/io/mesh_io.h"
+#include "primo/scenario/scenario.h"
 
 namespace fs = std::filesystem;
 using namespace primo;

@@ -12,8 +12,8 @@
 #include <filesystem>
 
 #include "e2e_support.h"
-#include "primo/geometry.h"
-#include "primo/mesh_io.h"
+#include "primo/mesh/geometry.h"
+#include "primo/io/mesh_io.h"
 
 namespace fs = std::filesystem;
 using namespace primo;

@@ -15,21 +15,21 @@
 #include <optional>
 #include <thread>
 
-#include "autosave.h"
+#include "user_files/autosave.h"
 #include "editor.h"
-#include "face_colors.h"
-#include "frame_pacer.h"
+#include "view/face_colors.h"
+#include "view/frame_pacer.h"
 #include "gl.h"
-#include "ground_grid.h"
+#include "view/ground_grid.h"
 #include "panels.h"
 #include "paths.h"
 #include "preferences_window.h"
-#include "primo/error.h"
-#include "primo/input_files.h"
+#include "primo/util/error.h"
+#include "primo/io/input_files.h"
 #include "renderer.h"
-#include "run_deadline.h"
+#include "input/run_deadline.h"
 #include "screenshot.h"
-#include "script.h"
+#include "input/script.h"
 #include "ui_input.h"
 
 namespace primo::editor {

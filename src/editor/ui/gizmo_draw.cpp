@@ -7,7 +7,7 @@
 #include <cmath>
 
 #include "editor.h"
-#include "face_colors.h"
+#include "view/face_colors.h"
 
 namespace primo::editor {
 namespace {

@@ -5,7 +5,7 @@
 #include <utility>
 #include <vector>
 
-#include "primo/error.h"
+#include "primo/util/error.h"
 
 namespace primo::editor {
 namespace {

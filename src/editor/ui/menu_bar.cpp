@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "model_orientation.h"
+#include "document/model_orientation.h"
 #include "paths.h"
 
 namespace primo::editor {

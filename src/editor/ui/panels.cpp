@@ -12,15 +12,15 @@
 #include <filesystem>
 
 #include "controls_window.h"
-#include "euler_angles.h"
-#include "face_colors.h"
+#include "view/euler_angles.h"
+#include "view/face_colors.h"
 #include "gizmo_draw.h"
 #include "menu_bar.h"
 #include "paths.h"
 #include "preferences_window.h"
 #include "session_panel.h"
 #include "widgets.h"
-#include "primo/turn.h"
+#include "primo/model/turn.h"
 
 namespace primo::editor {
 namespace fs = std::filesystem;

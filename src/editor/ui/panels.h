@@ -7,10 +7,10 @@
 #include <optional>
 #include <string>
 
-#include "autosave.h"
+#include "user_files/autosave.h"
 #include "editor.h"
 #include "file_dialog.h"
-#include "input.h"
+#include "input/input.h"
 
 namespace primo::editor {
 

@@ -2,7 +2,7 @@
 // Edit > Preferences: the defaults a new run starts with (preferences.h) and the key map.
 
 #include "editor.h"
-#include "input.h"
+#include "input/input.h"
 #include "panels.h"
 
 namespace primo::editor {

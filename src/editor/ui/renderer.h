@@ -15,13 +15,13 @@
 #include <string>
 #include <vector>
 
-#include "camera.h"
+#include "view/camera.h"
 #include "editor.h"
 #include "gl.h"
 #include "gl_shader.h"
-#include "ground_grid.h"
-#include "mesh_topology.h"
-#include "proxy_mesh.h"
+#include "view/ground_grid.h"
+#include "document/mesh_topology.h"
+#include "document/proxy_mesh.h"
 
 namespace primo::editor {
 

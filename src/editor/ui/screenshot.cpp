@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "gl.h"
-#include "primo/error.h"
-#include "primo/output_files.h"
+#include "primo/util/error.h"
+#include "primo/io/output_files.h"
 
 namespace primo::editor {
 

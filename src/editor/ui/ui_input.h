@@ -15,7 +15,7 @@
 #include <glm/vec2.hpp>
 
 #include "editor.h"
-#include "input.h"
+#include "input/input.h"
 #include "panels.h"
 #include "preferences_window.h"
 

@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "shown_value.h"
+#include "view/shown_value.h"
 
 namespace primo::editor {
 

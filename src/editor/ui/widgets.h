@@ -3,7 +3,7 @@
 
 #include <imgui.h>
 
-#include "primo/types.h"
+#include "primo/util/types.h"
 
 namespace primo::editor {
 
