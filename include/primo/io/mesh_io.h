@@ -4,20 +4,10 @@
 
 #include <string>
 #include <string_view>
-#include <vector>
 
-#include "primo/mesh/mesh.h"
-#include "primo/mesh/mesh_attributes.h"
+#include "primo/mesh/polygon_soup.h"
 
 namespace primo {
-
-// A polygon soup as a file lists it: points, faces as 0-based vertex indices, and what the file
-// gives the faces' corners (UVs, normals, colours, materials; primo/mesh/mesh_attributes.h).
-struct PolygonSoup {
-  std::vector<Vec3> points;
-  std::vector<std::vector<int>> faces;
-  MeshAttributes attributes = {};
-};
 
 // Reads OBJ, OFF, PLY, STL or OM, parsed by PriMo (OpenMesh's readers are not safe on hostile
 // files: docs/mesh-io.md; OBJ, OFF and OM keep doubles), and the scene formats glTF 2.0 (.gltf,
@@ -33,13 +23,6 @@ Mesh load_mesh(const std::string& path);
 // The fuzz targets (fuzz/) call this with arbitrary bytes: it must throw Error or return,
 // never crash, hang or allocate more than a small multiple of the input.
 PolygonSoup parse_mesh_bytes(std::string_view bytes, const std::string& path);
-
-// Validates a soup and builds the mesh; `source` names it in errors (usually the file path).
-// Throws Error for: no faces, an index out of range, a face with fewer than 3 vertices or a
-// repeated vertex, a non-finite coordinate, a zero-area face, an edge with more than two faces,
-// inconsistent orientation, and a non-manifold vertex. Each message names the first offending
-// face/vertex indices.
-Mesh mesh_from_soup(const PolygonSoup& soup, const std::string& source);
 
 // Writes the mesh by extension (OBJ, OFF, PLY, STL, OM, glTF .gltf/.glb) through a temporary
 // file in the same folder that is renamed into place (primo/io/output_files.h), so a failure never

@@ -3,7 +3,7 @@
 #include <vector>
 
 #include "primo/util/error.h"
-#include "primo/io/mesh_io.h"
+#include "primo/mesh/polygon_soup.h"
 
 // After primo/mesh/mesh.h: the Eigen vector traits come first.
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>

@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "primo/util/error.h"
-#include "primo/io/mesh_io.h"
+#include "primo/mesh/polygon_soup.h"
 #include "silence_openmesh.h"
 
 namespace primo {
