@@ -1,6 +1,6 @@
-// Assimp runs in a child process (src/core/io/scene/scene_reader_process.h): what the child sends back
-// arrives bit for bit, and a crash, a memory bomb or a hang in it is one line naming the file
-// while this process goes on.
+// Assimp runs in a child process (src/core/io/scene/scene_reader_process.h): what the child
+// sends back arrives bit for bit, and a crash, a memory bomb or a hang in it is one line naming
+// the file while this process goes on.
 
 #include <gtest/gtest.h>
 

@@ -11,8 +11,9 @@
 //  - apply_event: one event on a SessionState; validate_session runs them all against a mesh
 //    without solving, so a bad file is rejected before anything is computed or written.
 //
-// Recording is primo/sessions/session_recorder.h, headless replay primo/sessions/session_replay.h, carrying a
-// session over to a finer mesh primo/sessions/session_mapping.h.
+// Recording is primo/sessions/session_recorder.h, headless replay
+// primo/sessions/session_replay.h, carrying a session over to a finer mesh
+// primo/sessions/session_mapping.h.
 
 #include <string>
 #include <vector>

@@ -1,7 +1,7 @@
 #pragma once
-// Which way a model's up and front point (ModelOrientation, primo/scenario/scenario.h), and where the
-// editor gets it from. "Front" means the model's front, as artists expect: Numpad 1 shows a
-// character's face, whatever axis the file happens to use. In order:
+// Which way a model's up and front point (ModelOrientation, primo/scenario/scenario.h), and
+// where the editor gets it from. "Front" means the model's front, as artists expect: Numpad 1
+// shows a character's face, whatever axis the file happens to use. In order:
 //  1. the scenario's `editor.orientation`;
 //  2. the mesh's orientation file beside it, `<name>.orientation.json` for `<name>.obj`
 //     (mesh formats such as OBJ have no place for it, and the bundled Spot faces -z);

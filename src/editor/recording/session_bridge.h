@@ -1,7 +1,8 @@
 #pragma once
-// The editor's edit state as a recorded session keeps it (primo/sessions/session_state.h), and back.
-// A session holds what the solver sees: handles, prisms and painted factors. The selection,
-// the active handle and the counters for new handles' names and colours stay in the editor.
+// The editor's edit state as a recorded session keeps it (primo/sessions/session_state.h), and
+// back. A session holds what the solver sees: handles, prisms and painted factors. The
+// selection, the active handle and the counters for new handles' names and colours stay in the
+// editor.
 
 #include "document/edit_state.h"
 #include "primo/sessions/session_state.h"
