@@ -3,6 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "view/face_colors.h"
 #include "document/mesh_topology.h"
@@ -73,21 +76,30 @@ TEST(EditorPaint, SmoothingSoftensThePaintedEdge) {
   EXPECT_EQ(smooth_factors(nullptr, t), nullptr);
 }
 
-TEST(EditorPaint, SofterJointsAreNoHandleColour) {
-  // Painted softer joints show under handles (55% over them): their colour must not pass for
-  // any handle's, the first (sky blue) above all. Distance in 0..255 RGB.
-  float opacity = 0.0f;
-  const Rgb soft = factor_color(PaintLayer::Height, 0.3, opacity);
-  EXPECT_GT(opacity, 0.0f);
+TEST(EditorPaint, NoPaintColourIsAHandleColour) {
+  // Painted faces show under handles (55% over them): no paint colour may pass for any
+  // handle's. Every paint colour of both layers, softer and stiffer, shrink and grow, and the
+  // colour of a broken factor, against every handle colour. Distance in 0..255 RGB.
   auto distance = [](const Rgb& a, const Rgb& b) {
     return 255.0 * std::sqrt(std::pow(a[0] - b[0], 2) + std::pow(a[1] - b[1], 2) + std::pow(a[2] - b[2], 2));
   };
+  std::vector<std::pair<std::string, Rgb>> handles;
   HandleGroup g;
   for (int slot = 0; slot < 8; ++slot) {
     g.color = slot;
-    EXPECT_GT(distance(soft, handle_color(g)), 100.0) << "palette slot " << slot;
+    handles.emplace_back("palette slot " + std::to_string(slot), handle_color(g));
   }
   g.mode = HandleMode::Fixed;
-  EXPECT_GT(distance(soft, handle_color(g)), 100.0) << "fixed regions";
-  EXPECT_GT(distance(soft, selection_color()), 100.0);
+  handles.emplace_back("fixed regions", handle_color(g));
+  for (PaintLayer layer : {PaintLayer::Height, PaintLayer::Width})
+    for (double factor : {0.3, 0.9, 1.1, 3.0, -1.0}) {
+      float opacity = 0.0f;
+      const Rgb paint = factor_color(layer, factor, opacity);
+      EXPECT_GT(opacity, 0.0f);
+      for (const auto& [name, handle] : handles)
+        EXPECT_GT(distance(paint, handle), 100.0)
+            << (layer == PaintLayer::Height ? "stiffness" : "width") << " x" << factor << " and "
+            << name;
+      EXPECT_GT(distance(paint, selection_color()), 100.0);
+    }
 }

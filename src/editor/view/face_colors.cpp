@@ -58,15 +58,17 @@ Rgb heat_color(double t) {
 Rgb factor_color(PaintLayer layer, double factor, float& opacity) {
   if (factor == 1.0 || !(factor > 0.0)) {
     opacity = factor == 1.0 ? 0.0f : 0.85f;
-    return rgb(40, 90, 255);
+    return rgb(20, 40, 230);
   }
   // Half a step of opacity per halving or doubling, from 0.35 up.
   const double octaves = std::abs(std::log2(factor));
   opacity = float(std::min(0.85, 0.35 + 0.25 * octaves));
-  // Softer joints in indigo: the handles' palette starts with a sky blue, which a paler blue
-  // under a handle could be taken for.
-  if (layer == PaintLayer::Height) return factor < 1.0 ? rgb(60, 40, 200) : rgb(255, 80, 40);
-  return factor < 1.0 ? rgb(175, 80, 255) : rgb(40, 200, 90);
+  // Paint shows under handles (55% over them), so no paint colour may pass for a handle's:
+  // each is more than 100 RGB units from every colour of the handles' palette. Hence softer
+  // joints in indigo (not the palette's sky blue), stiffer in a deep red (not its coral red),
+  // and the width layer's purple and green darker than the palette's.
+  if (layer == PaintLayer::Height) return factor < 1.0 ? rgb(60, 40, 200) : rgb(180, 0, 0);
+  return factor < 1.0 ? rgb(90, 0, 130) : rgb(0, 130, 30);
 }
 
 std::vector<std::uint32_t> face_overlay_colors(const OverlayInputs& in) {
