@@ -42,7 +42,8 @@ void FileDialog::open(Mode mode, std::string title, std::vector<std::string> ext
   std::error_code ec;
   if (folder.empty() || !fs::is_directory(folder, ec)) folder = fs::current_path(ec).string();
   enter(folder);
-  open_ = request_popup_ = true;
+  open_ = request_popup_ = focus_name_ = true;
+  ++openings_;
 }
 
 void FileDialog::enter(const std::string& folder) {
@@ -177,8 +178,16 @@ bool FileDialog::draw(std::string& path) {
 
   // Name and buttons.
   ImGui::SetNextItemWidth(-200);
-  if (ImGui::IsWindowAppearing()) ImGui::SetKeyboardFocusHere();
+  if (focus_name_) {
+    ImGui::SetKeyboardFocusHere();
+    focus_name_ = false;
+  }
+  // A new field at each opening: Dear ImGui keeps the cursor of a text field it has seen and
+  // selects the text only of a field new to it, so a name typed into the second dialog went
+  // into the proposed name where the cursor had been.
+  ImGui::PushID(openings_);
   if (ImGui::InputText("##name", &name_, ImGuiInputTextFlags_EnterReturnsTrue)) accepted = accept(path);
+  ImGui::PopID();
   ImGui::SameLine();
   if (ImGui::Button(mode_ == Mode::Open ? "Open" : "Save", ImVec2(90, 0))) accepted = accept(path);
   ImGui::SameLine();

@@ -38,6 +38,8 @@ class FileDialog {
   std::vector<Entry> entries_;
   int selected_ = -1;
   bool open_ = false, request_popup_ = false;
+  bool focus_name_ = false;  // the name field takes the keyboard at the next frame drawn
+  int openings_ = 0;         // the name field's ID at each opening (file_dialog.cpp)
 };
 
 }  // namespace primo::editor
