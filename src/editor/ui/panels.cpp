@@ -19,6 +19,7 @@
 #include "paths.h"
 #include "preferences_window.h"
 #include "session_panel.h"
+#include "status_bar.h"
 #include "widgets.h"
 #include "primo/model/turn.h"
 
@@ -630,41 +631,6 @@ void draw_properties(Editor& e, UiState& ui, float top, float height) {
 
 // --- Menu, status, progress, help -------------------------------------------------------
 
-void draw_status(Editor& e, UiState& ui) {
-  const ImVec2 display = ImGui::GetIO().DisplaySize;
-  ImGui::SetNextWindowPos(ImVec2(0, display.y - ui.status_height));
-  ImGui::SetNextWindowSize(ImVec2(display.x, ui.status_height));
-  ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(8, 4));
-  ImGui::Begin("##status", nullptr, ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove |
-                                        ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoBringToFrontOnFocus);
-  if (const Editor::Message* m = e.current_message()) {
-    if (m->error)
-      ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.4f, 1), "%s", m->text.c_str());
-    else
-      ImGui::TextUnformatted(m->text.c_str());
-  } else {
-    ImGui::TextDisabled("%s - F1: controls", tool_label(e.tools.tool));
-  }
-  const SolverStatus& st = e.solver_status();
-  char right[160];
-  char frame[32];
-  if (e.idle())
-    std::snprintf(frame, sizeof frame, "idle");
-  else
-    std::snprintf(frame, sizeof frame, "%.1f ms", e.frame_ms());
-  // Where drags show previews, which picture is on screen: the preview follows the hand, the
-  // full resolution catches up once it pauses.
-  const char* picture = !st.previews                          ? ""
-                        : st.showing_preview() ? " | preview"
-                                                              : " | full resolution";
-  std::snprintf(right, sizeof right, "%s | %s%s | E %.4g | %s", tool_label(e.tools.tool),
-                phase_label(st.phase), picture, st.energy, frame);
-  ImGui::SameLine(std::max(ImGui::GetCursorPosX() + 20, display.x - ImGui::CalcTextSize(right).x - 16));
-  ImGui::TextDisabled("%s", right);
-  ImGui::End();
-  ImGui::PopStyleVar();
-}
-
 void draw_progress(Editor& e, const ViewportRect& vp) {
   const SolverStatus& st = e.solver_status();
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - st.phase_start).count();
@@ -833,7 +799,7 @@ void draw_ui(Editor& e, UiState& ui) {
     const float height = ImGui::GetIO().DisplaySize.y - top - ui.status_height;
     draw_toolbar(e, ui, top, height);
     draw_properties(e, ui, top, height);
-    draw_status(e, ui);
+    draw_status_bar(e, ui);
     draw_progress(e, e.viewport());
   }
   draw_controls_window(e, ui);
