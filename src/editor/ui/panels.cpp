@@ -19,6 +19,7 @@
 #include "paths.h"
 #include "preferences_window.h"
 #include "session_panel.h"
+#include "solver_panel.h"
 #include "status_bar.h"
 #include "widgets.h"
 #include "primo/model/turn.h"
@@ -557,44 +558,6 @@ void display_section(Editor& e) {
     ImGui::Dummy(ImVec2(w, h));
     ImGui::TextDisabled("joint energy per area: 0 .. %.3g", g && !g->face_energy.empty() ? g->energy_scale : 0.0);
   }
-}
-
-void solver_section(Editor& e) {
-  if (!ImGui::CollapsingHeader("Solver", ImGuiTreeNodeFlags_DefaultOpen)) return;
-  const SolverStatus& st = e.solver_status();
-  const ImVec4 col = st.phase == SolverPhase::Failed    ? ImVec4(1.0f, 0.45f, 0.4f, 1)
-                     : st.phase == SolverPhase::Settled ? ImVec4(0.5f, 0.9f, 0.5f, 1)
-                     : st.phase == SolverPhase::Stopped ? ImVec4(1.0f, 0.8f, 0.3f, 1)
-                                                        : ImVec4(0.9f, 0.9f, 0.9f, 1);
-  ImGui::TextColored(col, "%s", phase_label(st.phase));
-  if (st.phase == SolverPhase::Failed) ImGui::TextWrapped("%s", st.error.c_str());
-  if (st.phase == SolverPhase::Stopped) {
-    ImGui::SameLine();
-    if (ImGui::SmallButton("Continue")) e.continue_solving();
-    if (ImGui::IsItemHovered()) ImGui::SetTooltip("Solve on from here until converged");
-  } else if (st.busy() && st.phase != SolverPhase::Building) {
-    ImGui::SameLine();
-    if (ImGui::SmallButton("Stop")) e.stop_solving();
-    if (ImGui::IsItemHovered())
-      ImGui::SetTooltip("Stop converging and keep the shape shown (Continue solves on)");
-  }
-  ImGui::ProgressBar(float(st.progress), ImVec2(-1, 0),
-                     st.phase == SolverPhase::Building ? "building prisms"
-                     : !st.detail.empty()               ? st.detail.c_str()
-                     : st.busy()                        ? "converging"
-                                                        : "");
-  ImGui::Text("Energy %.6g", st.energy);
-  ImGui::Text("Iterations %d (total %ld)", st.iterations, st.total_iterations);
-  ImGui::Text("%.1f ms per iteration, build %.0f ms", 1000.0 * st.seconds_per_iteration, 1000.0 * st.build_seconds);
-  ImGui::Text("Frame %.1f ms (%.0f fps)", e.frame_ms(), e.frame_ms() > 0 ? 1000.0 / e.frame_ms() : 0.0);
-  const Editor::GestureStats& d = e.last_gesture_stats();
-  if (d.frames > 0)
-    ImGui::TextDisabled("Last %s: %d frames, %.1f ms mean, %.1f ms max, mesh %.1f/s", d.what.c_str(),
-                        d.frames, d.total_ms / d.frames, d.max_ms, d.updates_per_second());
-  if (st.previews)
-    ImGui::TextDisabled(st.showing_preview()
-                            ? "Showing a preview (coarse levels); full resolution when the hand pauses"
-                            : "Full resolution (drags show a preview: a full cycle outlasts 0.1 s)");
 }
 
 void draw_properties(Editor& e, UiState& ui, float top, float height) {
