@@ -205,3 +205,35 @@ TEST(EditorSessions, PlaybackRedrawsHandleColoursWhenTheHandlesChange) {
   ASSERT_EQ(d->state.handles.size(), 1u);
   EXPECT_TRUE(redrawn) << "the new handle's colour is drawn in the frame it appears";
 }
+
+TEST(EditorSessions, TrivialSessionErrorsAreStatusMessagesWithoutAPopup) {
+  // Each is said in red in the status bar and counted as an error (a script stops on it), and
+  // none opens a popup to dismiss: the next click fixes it, and no work is lost.
+  const std::string dir = primo::test::temp_dir();
+  Editor empty;
+  empty.sessions.start_recording(empty);  // no mesh
+  empty.sessions.open_playback(empty, dir + "/any.session.json");
+  empty.sessions.export_animation(empty, dir + "/any.glb");
+  EXPECT_EQ(empty.error_count(), 3u);
+  EXPECT_TRUE(empty.take_error_popup().empty());
+  ASSERT_NE(empty.current_message(), nullptr);
+  EXPECT_TRUE(empty.current_message()->error);
+
+  Editor e;
+  open_bar(e, dir);
+  e.sessions.save(e, dir + "/none.session.json");  // nothing recorded
+  e.sessions.export_animation(e, dir + "/none.glb");  // no session
+  std::ofstream(dir + "/broken.session.json") << "{ not json";
+  e.sessions.open_playback(e, dir + "/broken.session.json");
+  EXPECT_EQ(e.error_count(), 3u);
+  EXPECT_TRUE(e.take_error_popup().empty());
+  EXPECT_NE(e.messages().back().text.find("broken.session.json"), std::string::npos)
+      << "names the file: " << e.messages().back().text;
+
+  // Saving a recording that cannot be written would lose it: that one asks to be read.
+  e.sessions.start_recording(e);
+  e.update(0.016);
+  e.sessions.save(e, dir + "/no such folder/s.session.json");
+  EXPECT_EQ(e.error_count(), 4u);
+  EXPECT_FALSE(e.take_error_popup().empty());
+}

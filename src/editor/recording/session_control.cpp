@@ -33,7 +33,10 @@ std::string format_duration(double seconds) {
 
 void SessionControl::start_recording(Editor& e) {
   Document* doc = e.document();
-  if (!doc) return e.error("Nothing to record: no mesh is open");
+  // A command that cannot run yet, or a session file that does not fit, is said in the status
+  // bar (Editor::error_in_status); a popup only where work would be lost: a recording that
+  // could not be saved, an animation export that failed after the user waited for it.
+  if (!doc) return e.error_in_status("Nothing to record: open a mesh first");
   if (playing_) pause(e);
   recorder_.start(*doc, clock_);
   has_recording_ = true;
@@ -52,7 +55,7 @@ void SessionControl::stop_recording(Editor& e) {
 
 void SessionControl::save(Editor& e, const std::string& path) {
   stop_recording(e);
-  if (!has_recording_) return e.error("No session recorded yet");
+  if (!has_recording_) return e.error_in_status("No session recorded yet: press Record first");
   try {
     save_session(recorded_, path);
     e.info("Saved the session to " + path);
@@ -63,7 +66,7 @@ void SessionControl::save(Editor& e, const std::string& path) {
 
 void SessionControl::open_playback(Editor& e, const std::string& path) {
   Document* doc = e.document();
-  if (!doc) return e.error("Open the session's mesh first");
+  if (!doc) return e.error_in_status("Open the session's mesh first");
   try {
     Session s = load_session(path);
     validate_session(s, doc->n_faces());  // names the event that does not fit this mesh
@@ -80,7 +83,7 @@ void SessionControl::open_playback(Editor& e, const std::string& path) {
     e.info("Session " + path + ": " + std::to_string(playback_.events.size()) + " events, " +
            format_duration(playback_.duration()));
   } catch (const std::exception& ex) {
-    e.error(ex.what());
+    e.error_in_status(ex.what());  // the file and the problem; nothing is lost
   }
 }
 
@@ -110,16 +113,18 @@ void SessionControl::close_playback(Editor& e) {
 
 void SessionControl::export_animation(Editor& e, const std::string& path) {
   const Document* doc = e.document();
-  if (!doc) return e.error("Open the session's mesh first");
-  if (exporting()) return e.error("Still exporting the session animation; try again when it is done");
+  if (!doc) return e.error_in_status("Open the session's mesh first");
+  if (exporting())
+    return e.error_in_status("Still exporting the session animation; try again when it is done");
   stop_recording(e);
-  if (!has_session()) return e.error("No session to export: record one or open one for playback");
+  if (!has_session())
+    return e.error_in_status("No session to export: record one or open one for playback");
   auto session = std::make_shared<const Session>(has_playback_ ? playback_ : recorded_);
   std::shared_ptr<const Mesh> mesh = doc->mesh;
   try {
     SessionAnimation(*session, *mesh, 1, path);  // refuses a file too large before solving
   } catch (const std::exception& ex) {
-    return e.error(ex.what());
+    return e.error_in_status(ex.what());
   }
   e.info("Exporting the session animation to " + path + " (replaying " +
          std::to_string(session->frames()) + " frames)");
