@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <exception>
@@ -192,6 +193,19 @@ bool Editor::save_scenario(const std::string& path) {
 
 double Editor::file_task_seconds() const { return task_.valid() ? clock_ - task_started_ : 0.0; }
 
+bool Editor::cancel_open() {
+  if (!opening()) return false;
+  cancelled_opens_.push_back(std::move(task_));
+  queued_open_.reset();
+  std::string what = task_label_;  // "Opening big.obj"
+  if (!what.empty()) what[0] = char(std::tolower(static_cast<unsigned char>(what[0])));
+  task_label_.clear();
+  const std::string open_now =
+      doc_ ? file_name(doc_->scenario_path.empty() ? doc_->mesh_path : doc_->scenario_path) : "";
+  info("Stopped " + what + (open_now.empty() ? "" : "; " + open_now + " stays open"));
+  return true;
+}
+
 // --- Per frame --------------------------------------------------------------------------
 
 void Editor::update(double seconds) {
@@ -219,6 +233,19 @@ void Editor::update(double seconds) {
       open_file(next.path, next.recovered);
     }
   }
+  // Cancelled opens that have finished reading: their documents and errors go unseen.
+  cancelled_opens_.erase(
+      std::remove_if(cancelled_opens_.begin(), cancelled_opens_.end(),
+                     [](std::future<std::function<void()>>& task) {
+                       if (task.wait_for(std::chrono::seconds(0)) != std::future_status::ready)
+                         return false;
+                       try {
+                         task.get();
+                       } catch (const std::exception&) {
+                       }
+                       return true;
+                     }),
+      cancelled_opens_.end());
   if (!doc_) return;
   sessions.update(*this, seconds);
   if (autosave_every_ > 0 && clock_ - last_autosave_ >= autosave_every_) {

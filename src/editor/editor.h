@@ -102,6 +102,12 @@ class Editor {
   bool file_task_running() const { return task_.valid(); }
   const std::string& file_task_label() const { return task_label_; }
   double file_task_seconds() const;
+  // An open (or a recovery) is under way: cancel_open() can stop it.
+  bool opening() const { return task_.valid() && task_is_open_; }
+  // Stops the open under way and forgets one asked for after it: the document open before
+  // stays as it was. The reader cannot be interrupted, so it reads on in the background and
+  // its document is dropped unseen; a new open starts at once. False when no open runs.
+  bool cancel_open();
 
   // --- Unsaved work (editor_unsaved_work.cpp) ------------------------------------------
   // Changes since the document was opened or last saved as a scenario: handles, poses,
@@ -383,6 +389,9 @@ class Editor {
     bool recovered = false;
   };
   std::optional<QueuedOpen> queued_open_;     // asked for while a task ran: the newest only
+  // Cancelled opens still reading, kept until they end (a future of std::async blocks in its
+  // destructor), their documents dropped.
+  std::vector<std::future<std::function<void()>>> cancelled_opens_;
   std::string task_label_;
   double task_started_ = 0.0;
   double clock_ = 0.0;

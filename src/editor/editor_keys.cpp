@@ -53,7 +53,10 @@ bool Editor::run_action(Action action) {
       tools.gizmo_orientation = next_orientation(tools.gizmo_orientation);
       info(std::string("Gizmo axes: ") + orientation_label(tools.gizmo_orientation));
       return true;
-    case Action::Cancel: cancel_gesture(); return true;
+    case Action::Cancel:  // a drag or stroke first, else an open under way
+      if (gesture_ == Gesture::None && cancel_open()) return true;
+      cancel_gesture();
+      return true;
 
     case Action::SelectAll: select_all(); return true;
     case Action::SelectNone: clear_selection(); return true;

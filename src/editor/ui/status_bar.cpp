@@ -71,14 +71,27 @@ void draw_status_bar(Editor& e, UiState& ui) {
   std::snprintf(right, sizeof right, "%s | %s%s | E %.4g | %s", tool_label(e.tools.tool),
                 phase_label(st.phase), picture, st.energy, frame);
 
-  const Editor::Message* m = e.current_message();
-  const std::string left =
-      m ? m->text : std::string(tool_label(e.tools.tool)) + " - F1: controls";
-  const StatusBarLayout layout =
-      status_bar_layout(left, right, ImGui::GetCursorPosX(), ImGui::GetWindowWidth());
+  // While a file opens: what and for how long, and a Cancel (Esc too) that keeps the
+  // document open before; else the newest message, or the tool and the F1 hint.
+  const bool loading = e.file_task_running();
+  const Editor::Message* m = loading ? nullptr : e.current_message();
+  std::string left = m ? m->text : std::string(tool_label(e.tools.tool)) + " - F1: controls";
+  if (loading) {
+    char text[256];
+    std::snprintf(text, sizeof text, "%s... %.1f s", e.file_task_label().c_str(),
+                  e.file_task_seconds());
+    left = text;
+  }
+  const char* cancel = "Cancel";
+  const ImGuiStyle& style = ImGui::GetStyle();
+  const float button_width = e.opening() ? ImGui::CalcTextSize(cancel).x +
+                                               2 * style.FramePadding.x + style.ItemSpacing.x
+                                         : 0.0f;
+  const StatusBarLayout layout = status_bar_layout(left, right, ImGui::GetCursorPosX(),
+                                                   ImGui::GetWindowWidth(), button_width);
   if (m && m->error)
     ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.4f, 1), "%s", layout.left.c_str());
-  else if (m)
+  else if (m || loading)
     ImGui::TextUnformatted(layout.left.c_str());
   else
     ImGui::TextDisabled("%s", layout.left.c_str());
@@ -88,6 +101,12 @@ void draw_status_bar(Editor& e, UiState& ui) {
     ImGui::TextUnformatted(left.c_str());
     ImGui::PopTextWrapPos();
     ImGui::EndTooltip();
+  }
+  if (e.opening()) {
+    ImGui::SameLine();
+    if (ImGui::SmallButton(cancel)) e.cancel_open();
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("Stop opening (Esc): what is open now stays as it is");
   }
   ImGui::SameLine(layout.right_x);
   ImGui::TextDisabled("%s", right);
