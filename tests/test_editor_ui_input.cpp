@@ -221,3 +221,38 @@ TEST(EditorUiInput, TheSolverSettlesWhileAValueFieldIsInEditMode) {
   EXPECT_TRUE(settled) << "solver: iteration " << w.e.solver_status().iterations;
   EXPECT_NEAR(w.angle_deg(), 90.0, 1e-9) << "a quarter turn the other way";
 }
+
+TEST(EditorUiInput, ControlsWindowWithTheMoveToolLeavesTheViewAsItWas) {
+  // F1 opens and closes Help > Controls over the 3D view: the view's rectangle, the camera and
+  // its projection stay as they were, whichever tool is on (the Move tool's gizmo included).
+  Window w;
+  w.e.set_tool(Tool::Move);
+  double x = 0.0, y = 0.0;
+  ASSERT_TRUE(w.e.handle_window_position("Handle 1", x, y));
+  w.frame({InputEvent::cursor(x + 30.0, y)});
+  w.frame();
+  const ViewportRect vp = w.e.viewport();
+  const CameraPose pose = w.e.camera().pose();
+  const glm::dmat4 matrix = w.e.camera().projection() * w.e.camera().view();
+  auto same_view = [&](const char* when) {
+    const ViewportRect now = w.e.viewport();
+    EXPECT_EQ(now.x, vp.x) << when;
+    EXPECT_EQ(now.y, vp.y) << when;
+    EXPECT_EQ(now.width, vp.width) << when;
+    EXPECT_EQ(now.height, vp.height) << when;
+    EXPECT_EQ(w.e.camera().pose().target, pose.target) << when;
+    EXPECT_EQ(w.e.camera().pose().distance, pose.distance) << when;
+    EXPECT_TRUE(w.e.camera().projection() * w.e.camera().view() == matrix) << when;
+  };
+  w.frame({press(GLFW_KEY_F1), release(GLFW_KEY_F1)});
+  for (int k = 0; k < 4; ++k) w.frame();
+  EXPECT_TRUE(w.ui.show_help);
+  EXPECT_EQ(w.e.tools.tool, Tool::Move);
+  same_view("with the Controls window open");
+  w.frame({InputEvent::cursor(x, y)});
+  same_view("with the pointer over the view");
+  w.frame({press(GLFW_KEY_F1), release(GLFW_KEY_F1)});
+  for (int k = 0; k < 4; ++k) w.frame();
+  EXPECT_FALSE(w.ui.show_help);
+  same_view("after the Controls window closed");
+}
