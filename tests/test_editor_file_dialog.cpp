@@ -12,6 +12,7 @@
 
 #include "file_dialog.h"
 #include "headless_imgui.h"
+#include "test_support.h"
 
 using namespace primo::editor;
 namespace fs = std::filesystem;
@@ -52,11 +53,7 @@ struct DialogImGui : primo::test::HeadlessImGui {
   }
 };
 
-fs::path scratch_folder() {
-  const fs::path dir = fs::temp_directory_path() / "primo_test_file_dialog";
-  fs::create_directories(dir);
-  return dir;
-}
+fs::path scratch_folder() { return fs::path(primo::test::temp_dir()); }
 
 void open_save(FileDialog& dialog, const fs::path& folder) {
   dialog.open(FileDialog::Mode::Save, "Save the scenario", {".json"}, folder.string(),
@@ -108,6 +105,7 @@ TEST(EditorFileDialog, TypingReplacesTheProposedNameAfterAKeyboardShortcut) {
     io.KeysDown[GLFW_KEY_LEFT_CONTROL] = io.KeysDown[GLFW_KEY_LEFT_SHIFT] = false;
     io.KeyCtrl = io.KeyShift = false;
     imgui.settle(dialog);
-    EXPECT_EQ(imgui.type_and_accept(dialog, name), (folder / (std::string(name) + ".json")).string());
+    EXPECT_EQ(imgui.type_and_accept(dialog, name),
+              (folder / (std::string(name) + ".json")).string());
   }
 }

@@ -46,5 +46,6 @@ TEST(EditorSolverPanel, EveryLineFitsTheDefaultAndNarrowWidths) {
   last.max_ms = 3350.2;
   last.mesh_updates = 1000;
   for (float width : {340.0f, 260.0f, 200.0f, 150.0f})
-    EXPECT_LE(overflow_at(width, st, last), 0.5f) << "a line runs past a panel " << width << " wide";
+    EXPECT_LE(overflow_at(width, st, last), 0.5f)
+        << "a line runs past a panel " << width << " wide";
 }

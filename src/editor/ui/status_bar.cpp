@@ -56,8 +56,9 @@ void draw_status_bar(Editor& e, UiState& ui) {
   ImGui::SetNextWindowPos(ImVec2(0, display.y - ui.status_height));
   ImGui::SetNextWindowSize(ImVec2(display.x, ui.status_height));
   ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(8, 4));
-  ImGui::Begin("##status", nullptr, ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove |
-                                        ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoBringToFrontOnFocus);
+  ImGui::Begin("##status", nullptr,
+               ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove |
+                   ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoBringToFrontOnFocus);
   const SolverStatus& st = e.solver_status();
   char frame[32];
   if (e.idle())
@@ -66,7 +67,9 @@ void draw_status_bar(Editor& e, UiState& ui) {
     std::snprintf(frame, sizeof frame, "%.1f ms", e.frame_ms());
   // Where drags show previews, which picture is on screen: the preview follows the hand, the
   // full resolution catches up once it pauses.
-  const char* picture = !st.previews ? "" : st.showing_preview() ? " | preview" : " | full resolution";
+  const char* picture = !st.previews             ? ""
+                        : st.showing_preview() ? " | preview"
+                                               : " | full resolution";
   char right[160];
   std::snprintf(right, sizeof right, "%s | %s%s | E %.4g | %s", tool_label(e.tools.tool),
                 phase_label(st.phase), picture, st.energy, frame);
