@@ -202,6 +202,7 @@ void Editor::update(double seconds) {
     ++current_gesture_.frames;
     current_gesture_.total_ms += 1000.0 * seconds;
     current_gesture_.max_ms = std::max(current_gesture_.max_ms, 1000.0 * seconds);
+    current_gesture_.times.add(1000.0 * seconds);
   }
 
   if (task_.valid() &&
@@ -264,6 +265,10 @@ void Editor::update(double seconds) {
   last_tools_ = tools;
   follow_orientation(true);  // after an undo, redo or playback that changed it
   camera_.update(seconds);
+}
+
+void Editor::count_drawn_frame() {
+  if (gesture_ != Gesture::None) ++current_gesture_.drawn_frames;
 }
 
 bool Editor::settled() const {

@@ -457,6 +457,7 @@ void App::frame(double now, double dt) {
   ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
   if (!ui_.screenshot_path.empty()) take_screenshot(vp, fb_w, fb_h, true);
   glfwSwapBuffers(window_);
+  editor_.count_drawn_frame();
   if (script_ && script_->finished() && screenshot_run_ && !quit_) {
     ui_.show_panels = options_.screenshot_ui;  // then the --screenshot after the script
     script_.reset();
