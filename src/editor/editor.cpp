@@ -198,6 +198,10 @@ void Editor::update(double seconds) {
   clock_ += seconds;
   idle_ = std::exchange(idle_wait_, false);
   if (!idle_) frame_ms_ = frame_ms_ == 0.0 ? 1000.0 * seconds : 0.9 * frame_ms_ + 100.0 * seconds;
+  if (shown_frame_ms_ == 0.0 || clock_ - frame_ms_shown_at_ >= 0.5) {
+    shown_frame_ms_ = frame_ms_;
+    frame_ms_shown_at_ = clock_;
+  }
   if (gesture_ != Gesture::None && !idle_) {
     ++current_gesture_.frames;
     current_gesture_.total_ms += 1000.0 * seconds;

@@ -282,7 +282,9 @@ class Editor {
 
   // Frame statistics: time between frames (smoothed), and frame times during the last mouse
   // gesture (a handle drag, an orbit, a stroke...), also printed on stdout when it ends.
-  double frame_ms() const { return frame_ms_; }
+  // The time between frames, smoothed, as shown: refreshed twice a second, so that the panels
+  // showing it do not change (and need not be drawn again) at every frame.
+  double frame_ms() const { return shown_frame_ms_; }
   // The window drew a new picture this frame (counted in the gesture's figures).
   void count_drawn_frame();
   // The next update() follows a wait for events (nothing moved): its time is not a frame
@@ -418,6 +420,7 @@ class Editor {
   std::string error_popup_;
   size_t error_count_ = 0;
   double frame_ms_ = 0.0;
+  double shown_frame_ms_ = 0.0, frame_ms_shown_at_ = 0.0;
   bool idle_wait_ = false, idle_ = false;
   GestureStats gesture_stats_, current_gesture_;
 };
