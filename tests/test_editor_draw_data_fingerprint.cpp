@@ -18,47 +18,48 @@ using namespace primo::editor;
 
 namespace {
 
-std::uint64_t panels_of_one_frame(Editor& e, UiState& ui) {
-  ImGui::NewFrame();
-  draw_ui(e, ui);
-  ImGui::Render();
-  return draw_data_fingerprint(*ImGui::GetDrawData());
-}
+// An editor with nothing open and its panels, drawn by a headless Dear ImGui.
+struct Panels {
+  primo::test::HeadlessImGui imgui;
+  Editor e;
+  UiState ui;
+  Panels() {
+    e.set_viewport({0, 0, 900, 760, 1.0});
+    e.update(1.0 / 60.0);
+    for (int k = 0; k < 3; ++k) fingerprint_of_a_frame();  // the layout settles
+  }
+  std::uint64_t fingerprint_of_a_frame() {
+    ImGui::NewFrame();
+    draw_ui(e, ui);
+    ImGui::Render();
+    return draw_data_fingerprint(*ImGui::GetDrawData());
+  }
+};
 
 }  // namespace
 
 TEST(EditorDrawDataFingerprint, FramesOfAnEditorWhereNothingChangesDrawTheSamePanels) {
-  primo::test::HeadlessImGui imgui;
-  Editor e;
-  e.set_viewport({0, 0, 900, 760, 1.0});
-  UiState ui;
-  e.update(1.0 / 60.0);
-  for (int k = 0; k < 3; ++k) panels_of_one_frame(e, ui);  // the layout settles
-  const std::uint64_t first = panels_of_one_frame(e, ui);
+  Panels p;
+  const std::uint64_t first = p.fingerprint_of_a_frame();
   // Frames a few milliseconds apart, each a little longer than the last (a busy machine): the
   // frame time the status bar shows is refreshed twice a second, not at every frame.
   for (double ms : {17.0, 23.0, 31.0, 12.0}) {
-    e.update(ms / 1000.0);
-    EXPECT_EQ(panels_of_one_frame(e, ui), first) << "after a frame of " << ms << " ms";
+    p.e.update(ms / 1000.0);
+    EXPECT_EQ(p.fingerprint_of_a_frame(), first) << "after a frame of " << ms << " ms";
   }
 }
 
 TEST(EditorDrawDataFingerprint, AChangeOfWhatThePanelsShowChangesIt) {
-  primo::test::HeadlessImGui imgui;
-  Editor e;
-  e.set_viewport({0, 0, 900, 760, 1.0});
-  UiState ui;
-  e.update(1.0 / 60.0);
-  for (int k = 0; k < 3; ++k) panels_of_one_frame(e, ui);
-  const std::uint64_t before = panels_of_one_frame(e, ui);
-  e.info("Saved a screenshot to shot.png");  // a message in the status bar
-  const std::uint64_t with_message = panels_of_one_frame(e, ui);
+  Panels p;
+  const std::uint64_t before = p.fingerprint_of_a_frame();
+  p.e.info("Saved a screenshot to shot.png");  // a message in the status bar
+  const std::uint64_t with_message = p.fingerprint_of_a_frame();
   EXPECT_NE(with_message, before);
-  e.update(0.6);  // the status bar's frame time is refreshed
-  e.update(0.6);
-  EXPECT_NE(panels_of_one_frame(e, ui), with_message);
+  p.e.update(0.6);  // the status bar's frame time is refreshed
+  p.e.update(0.6);
+  EXPECT_NE(p.fingerprint_of_a_frame(), with_message);
   ImGui::GetIO().DisplaySize = ImVec2(1000, 700);  // the window's size
-  EXPECT_NE(panels_of_one_frame(e, ui), with_message);
+  EXPECT_NE(p.fingerprint_of_a_frame(), with_message);
 }
 
 TEST(EditorShownPicture, AFrameThatWouldDrawTheShownPictureIsNotDrawn) {
