@@ -206,6 +206,12 @@ def main():
     parser.add_argument("--work", help="folder for the scenarios and generated meshes")
     parser.add_argument("--timeout", type=float, default=600.0, help="per editor run, seconds")
     args = parser.parse_args()
+    names = args.meshes.split(",")
+    unknown = [n for n in names if n not in MESHES]
+    if unknown:
+        sys.exit(f"measure-editor-speed: unknown mesh '{unknown[0]}' (known: {', '.join(MESHES)})")
+    if args.runs < 1 or not 0 < args.seconds <= 600:
+        sys.exit("measure-editor-speed: --runs must be at least 1 and --seconds in (0, 600]")
     if not os.access(args.primo, os.X_OK):
         sys.exit(f"measure-editor-speed: {args.primo}: no primo executable (build it first)")
     work = args.work or tempfile.mkdtemp(prefix="primo-speed-")
@@ -216,9 +222,7 @@ def main():
     print(f"# {time.strftime('%Y-%m-%d %H:%M')}, {os.cpu_count()} cores, Xvfb (llvmpipe), "
           f"{args.seconds:g} s drag of the top tenth (bottom tenth fixed), {args.runs} runs")
     results = {}
-    for name in args.meshes.split(","):
-        if name not in MESHES:
-            sys.exit(f"measure-editor-speed: unknown mesh '{name}' (known: {', '.join(MESHES)})")
+    for name in names:
         file, where, steps = MESHES[name]
         folder = os.path.join(ROOT, "assets") if where == "assets" else args.shared_meshes
         source = os.path.join(folder, file) if folder else None
