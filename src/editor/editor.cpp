@@ -212,10 +212,15 @@ void Editor::update(double seconds) {
   clock_ += seconds;
   idle_ = std::exchange(idle_wait_, false);
   if (!idle_) frame_ms_ = frame_ms_ == 0.0 ? 1000.0 * seconds : 0.9 * frame_ms_ + 100.0 * seconds;
+  if (shown_frame_ms_ == 0.0 || clock_ - frame_ms_shown_at_ >= 0.5) {
+    shown_frame_ms_ = frame_ms_;
+    frame_ms_shown_at_ = clock_;
+  }
   if (gesture_ != Gesture::None && !idle_) {
     ++current_gesture_.frames;
     current_gesture_.total_ms += 1000.0 * seconds;
     current_gesture_.max_ms = std::max(current_gesture_.max_ms, 1000.0 * seconds);
+    current_gesture_.times.add(1000.0 * seconds);
   }
 
   if (task_.valid() &&
@@ -291,6 +296,10 @@ void Editor::update(double seconds) {
   last_tools_ = tools;
   follow_orientation(true);  // after an undo, redo or playback that changed it
   camera_.update(seconds);
+}
+
+void Editor::count_drawn_frame() {
+  if (gesture_ != Gesture::None) ++current_gesture_.drawn_frames;
 }
 
 bool Editor::settled() const {

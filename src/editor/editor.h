@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "view/camera.h"
+#include "view/frame_times.h"
 #include "document/document.h"
 #include "view/gizmo.h"
 #include "view/gizmo_orientation.h"
@@ -287,7 +288,11 @@ class Editor {
 
   // Frame statistics: time between frames (smoothed), and frame times during the last mouse
   // gesture (a handle drag, an orbit, a stroke...), also printed on stdout when it ends.
-  double frame_ms() const { return frame_ms_; }
+  // The time between frames, smoothed, as shown: refreshed twice a second, so that the panels
+  // showing it do not change (and need not be drawn again) at every frame.
+  double frame_ms() const { return shown_frame_ms_; }
+  // The window drew a new picture this frame (counted in the gesture's figures).
+  void count_drawn_frame();
   // The next update() follows a wait for events (nothing moved): its time is not a frame
   // time, for the frame-time display nor for a gesture's statistics.
   void mark_idle_wait() { idle_wait_ = true; }
@@ -300,6 +305,8 @@ class Editor {
     // big mesh, fewer times than frames are drawn).
     int mesh_updates = 0;
     int preview_updates = 0;  // of them, drags' previews (SolverGeometry::preview)
+    FrameTimes times;         // each frame's time, for its median and 90th percentile
+    int drawn_frames = 0;     // of the frames, those that drew a new picture
     double updates_per_second() const { return total_ms > 0 ? 1000.0 * mesh_updates / total_ms : 0.0; }
   };
   const GestureStats& last_gesture_stats() const { return gesture_stats_; }
@@ -422,6 +429,7 @@ class Editor {
   std::string error_popup_;
   size_t error_count_ = 0;
   double frame_ms_ = 0.0;
+  double shown_frame_ms_ = 0.0, frame_ms_shown_at_ = 0.0;
   bool idle_wait_ = false, idle_ = false;
   GestureStats gesture_stats_, current_gesture_;
 };

@@ -295,11 +295,18 @@ void Editor::end_gesture() {
   gesture_stats_ = current_gesture_;
   if (gesture_stats_.frames > 0)
     std::printf("[primo edit] %s: %d frames, %.1f ms mean, %.1f ms max per frame; solver %.1f ms "
-                "per iteration; the mesh changed %d times (%.1f a second, %d of them previews)\n",
+                "per iteration; the mesh changed %d times (%.1f a second, %d of them previews); "
+                "%.1f frames a second, %.1f ms median and %.1f ms 90th percentile per frame, "
+                "%d drawn (%.1f a second)\n",
                 what.c_str(), gesture_stats_.frames, gesture_stats_.total_ms / gesture_stats_.frames,
                 gesture_stats_.max_ms, 1000.0 * status_.seconds_per_iteration,
                 gesture_stats_.mesh_updates, gesture_stats_.updates_per_second(),
-                gesture_stats_.preview_updates);
+                gesture_stats_.preview_updates, gesture_stats_.times.per_second(),
+                gesture_stats_.times.quantile(0.5), gesture_stats_.times.quantile(0.9),
+                gesture_stats_.drawn_frames,
+                gesture_stats_.times.total_ms() > 0
+                    ? 1000.0 * gesture_stats_.drawn_frames / gesture_stats_.times.total_ms()
+                    : 0.0);
 }
 
 void Editor::end_gesture_before_edit() {

@@ -19,6 +19,8 @@
 #include "editor.h"
 #include "view/face_colors.h"
 #include "view/frame_pacer.h"
+#include "view/shown_picture.h"
+#include "draw_data_fingerprint.h"
 #include "gl.h"
 #include "view/ground_grid.h"
 #include "panels.h"
@@ -131,9 +133,12 @@ class App : public ScriptHost {
   void install_callbacks();
 
  private:
-  void frame(double now, double dt);
+  // Returns whether the frame drew a new picture (one that equals the shown one is not drawn).
+  bool frame(double now, double dt);
   void begin_ui_frame(const InputQueue& batch);
   void sync_renderer();
+  void draw_picture(const PictureFingerprint& picture, const DisplaySettings& shown,
+                    const ViewportRect& vp, int fb_w, int fb_h);
   void take_screenshot(const ViewportRect& vp, int fb_width, int fb_height, bool with_ui_drawn);
   void fail(const std::string& message);
   void stop_at_timeout();
@@ -159,6 +164,7 @@ class App : public ScriptHost {
   std::optional<ModelOrientation> grid_orientation_;  // of the ground grid drawn (none yet)
   int settled_frames_ = 0;
   FramePacer pacer_;
+  ShownPicture shown_picture_;
   bool screenshot_run_ = false;
   size_t errors_seen_ = 0;
   std::string shown_title_;
@@ -187,6 +193,7 @@ void App::install_callbacks() {
   glfwSetDropCallback(window_, [](GLFWwindow* w, int count, const char** paths) {
     of(w).queue_.push_back(InputEvent::drop(std::vector<std::string>(paths, paths + count)));
   });
+  glfwSetWindowRefreshCallback(window_, [](GLFWwindow* w) { of(w).shown_picture_.forget(); });
   glfwSetWindowFocusCallback(window_, ImGui_ImplGlfw_WindowFocusCallback);
   glfwSetCursorEnterCallback(window_, ImGui_ImplGlfw_CursorEnterCallback);
 }
@@ -389,7 +396,7 @@ void App::begin_ui_frame(const InputQueue& batch) {
   route_input(batch, editor_, ui_);
 }
 
-void App::frame(double now, double dt) {
+bool App::frame(double now, double dt) {
   if (script_ && !script_->finished()) {
     script_->update(now, *this);
     if (script_->failed()) out_of_time() ? stop_at_timeout() : fail(script_->error());
@@ -423,10 +430,8 @@ void App::frame(double now, double dt) {
   }
   ImGui::Render();
 
-  glViewport(0, 0, fb_w, fb_h);
-  glClearColor(0.11f, 0.115f, 0.13f, 1.0f);
-  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   const int vx = int(vp.x * scale), vw = int(vp.width * scale), vh = int(vp.height * scale);
+  const int vy = fb_h - int(vp.y * scale) - vh;
   renderer_->set_interactive(editor_.gesture() != Editor::Gesture::None);
   // A screenshot of the 3D view alone is a picture of the model, as a render is in Blender:
   // the ground grid, an aid for looking around, stays out of it (docs/editor.md).
@@ -434,7 +439,9 @@ void App::frame(double now, double dt) {
   if ((!ui_.screenshot_path.empty() && !ui_.screenshot_with_ui) ||
       (screenshot_run_ && !script_ && !options_.screenshot_ui))
     shown.grid = false;
-  renderer_->draw(shown, vx, fb_h - int(vp.y * scale) - vh, vw, vh);
+  const PictureFingerprint picture{renderer_->scene_fingerprint(shown, vw, vh),
+                                   draw_data_fingerprint(*ImGui::GetDrawData()),
+                                   vx, vy, vw, vh, fb_w, fb_h};
   // The stand-in is drawn only in motion; `settled` counts a request the solver has not
   // taken up yet as unsettled.
   if (const Document* doc = editor_.document())
@@ -452,15 +459,29 @@ void App::frame(double now, double dt) {
     }
   }
   errors_seen_ = editor_.error_count();
+  const bool drawn = !ui_.screenshot_path.empty() || shown_picture_.needs_drawing(picture);
+  if (drawn) draw_picture(picture, shown, vp, fb_w, fb_h);
+  if (script_ && script_->finished() && screenshot_run_ && !quit_) {
+    ui_.show_panels = options_.screenshot_ui;  // then the --screenshot after the script
+    script_.reset();
+  }
+  return drawn;
+}
+
+// Draws the frame's picture (the 3D view, then the panels over it) and shows it.
+void App::draw_picture(const PictureFingerprint& picture, const DisplaySettings& shown,
+                       const ViewportRect& vp, int fb_w, int fb_h) {
+  glViewport(0, 0, fb_w, fb_h);
+  glClearColor(0.11f, 0.115f, 0.13f, 1.0f);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  renderer_->draw(shown, picture.view_x, picture.view_y, picture.view_width, picture.view_height);
   if (!ui_.screenshot_path.empty() && !ui_.screenshot_with_ui)
     take_screenshot(vp, fb_w, fb_h, false);
   ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
   if (!ui_.screenshot_path.empty()) take_screenshot(vp, fb_w, fb_h, true);
   glfwSwapBuffers(window_);
-  if (script_ && script_->finished() && screenshot_run_ && !quit_) {
-    ui_.show_panels = options_.screenshot_ui;  // then the --screenshot after the script
-    script_.reset();
-  }
+  shown_picture_.drawn(picture);
+  editor_.count_drawn_frame();
 }
 
 int App::run() {
@@ -539,8 +560,8 @@ int App::run() {
     last = now;
 
     try {
-      frame(now, dt);
-      pacer_.frame_drawn(glfwGetTime() - now);
+      // The pace follows the cost of drawing: a frame that drew nothing costs little.
+      if (frame(now, dt)) pacer_.frame_drawn(glfwGetTime() - now);
     } catch (const std::exception& e) {
       // A bug must not take the user's work down: report it and go on with the next frame.
       if (ImGui::GetCurrentContext()->WithinFrameScope) {

@@ -201,9 +201,8 @@ void MeshRenderer::ensure_scene_target(int width, int height) {
   drawn_ = SceneKey{};
 }
 
-void MeshRenderer::draw(const DisplaySettings& display, int x, int y, int width, int height) {
-  if (width <= 0 || height <= 0) return;
-  ensure_scene_target(width, height);
+MeshRenderer::SceneKey MeshRenderer::scene_key(const DisplaySettings& display, int width,
+                                               int height) {
   SceneKey key;
   key.matrix = camera_ ? camera_->projection() * camera_->view() : glm::dmat4(1.0);
   // The proxy while the camera moves or a gesture is under way, and for a moment after (so
@@ -221,7 +220,24 @@ void MeshRenderer::draw(const DisplaySettings& display, int x, int y, int width,
   key.grid = display.grid;
   key.width = width;
   key.height = height;
+  return key;
+}
+
+std::uint64_t MeshRenderer::scene_fingerprint(const DisplaySettings& display, int width,
+                                              int height) {
+  const SceneKey key = scene_key(display, width, height);
+  // The scene drawn last is kept: a key equal to it draws the same picture, any other one
+  // (even one drawn earlier) a different one.
+  if (key == drawn_ && scene_fbo_) return scene_serial_;
+  return scene_serial_ + 1;
+}
+
+void MeshRenderer::draw(const DisplaySettings& display, int x, int y, int width, int height) {
+  if (width <= 0 || height <= 0) return;
+  ensure_scene_target(width, height);
+  const SceneKey key = scene_key(display, width, height);
   if (!(key == drawn_)) {
+    ++scene_serial_;
     glBindFramebuffer(GL_FRAMEBUFFER, scene_fbo_);
     render_scene(display, width, height, key.proxy);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);

@@ -48,6 +48,10 @@ class MeshRenderer : public Picker {
   // Draws background and mesh into the rectangle (GL window coordinates, origin bottom-left)
   // of the window's framebuffer.
   void draw(const DisplaySettings& display, int x, int y, int width, int height);
+  // A fingerprint of the scene draw() would show with these settings now: equal to the last
+  // one when the picture of the 3D view would be the same (view/shown_picture.h). Tracks the
+  // camera's motion as draw() does.
+  std::uint64_t scene_fingerprint(const DisplaySettings& display, int width, int height);
   // Whether the last draw used the proxy (the camera was moving).
   bool drew_proxy() const { return drew_proxy_; }
   // A gesture is under way (drag, stroke, orbit): big meshes stay on the proxy until it ends.
@@ -98,6 +102,8 @@ class MeshRenderer : public Picker {
     }
   };
   SceneKey drawn_;
+  SceneKey scene_key(const DisplaySettings& display, int width, int height);
+  std::uint64_t scene_serial_ = 0;  // increases with every scene drawn
   glm::dmat4 last_matrix_{0.0};
   std::chrono::steady_clock::time_point last_motion_;
   bool drew_proxy_ = false, interactive_ = false, in_motion_ = false;
