@@ -49,6 +49,26 @@ class CentroidPicker : public Picker {
   const Editor& e_;
 };
 
+// The faces whose rest centroid's y lies in [y_min, y_max].
+inline std::vector<int> faces_where(const MeshTopology& t, double y_min, double y_max) {
+  std::vector<int> faces;
+  for (int f = 0; f < t.n_faces; ++f) {
+    const double y = t.rest_geometry.centroid[size_t(f)].y();
+    if (y >= y_min && y <= y_max) faces.push_back(f);
+  }
+  return faces;
+}
+
+// Updates `editor` until its solver has settled and no file task runs; false after 30 s.
+inline bool settle(Editor& editor) {
+  for (int i = 0; i < 6000; ++i) {
+    editor.update(0.016);
+    if (editor.settled() && !editor.file_task_running()) return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  return false;
+}
+
 struct Harness {
   Editor editor;
   CentroidPicker picker{editor};

@@ -347,6 +347,11 @@ void App::sync_renderer() {
     const std::vector<char> without_twin = editor_.faces_without_twin();
     in.without_twin = &without_twin;
     renderer_->set_face_colors(face_overlay_colors(in));
+    if (const auto& vertices = doc->state.vertex_selection)
+      renderer_->set_vertex_points(shown_vertices(*doc->topology, doc->state.hidden),
+                                   selected_vertices(*vertices, doc->state.hidden, *doc->topology));
+    else
+      renderer_->set_vertex_points({}, {});
   }
 }
 
