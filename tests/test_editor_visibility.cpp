@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "document/face_visibility.h"
+#include "document/shown_edges.h"
 #include "editor_harness.h"
 #include "view/face_colors.h"
 
@@ -140,4 +141,23 @@ TEST(EditorVisibility, HiddenFacesDeformWithTheMesh) {
     moved = std::max(moved, (shown[v] - rest[v]).norm());
   }
   EXPECT_GT(moved, 0.05);
+}
+
+TEST(EditorVisibility, TheWireframeLeavesOutTheEdgesOfHiddenFacesOnly) {
+  // 4 x 3 quads; face = row * 4 + column, vertex = row * 5 + column.
+  const MeshTopology t = build_topology(make_grid(4, 3, 4, 3, FaceShape::Quads));
+  EXPECT_EQ(shown_edges(t, nullptr), t.edges);
+  FaceMask mask(12, 0);
+  mask[0] = 1;  // the corner face: its two boundary edges go, the two it shares stay
+  const std::vector<unsigned> shown = shown_edges(t, std::make_shared<const FaceMask>(mask));
+  EXPECT_EQ(shown.size() + 4, t.edges.size());
+  auto has = [&](unsigned a, unsigned b) {
+    for (size_t e = 0; e + 1 < shown.size(); e += 2)
+      if ((shown[e] == a && shown[e + 1] == b) || (shown[e] == b && shown[e + 1] == a)) return true;
+    return false;
+  };
+  EXPECT_FALSE(has(0, 1));
+  EXPECT_FALSE(has(0, 5));
+  EXPECT_TRUE(has(1, 6));
+  EXPECT_TRUE(has(5, 6));
 }

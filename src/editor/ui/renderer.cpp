@@ -178,6 +178,15 @@ void MeshRenderer::set_face_colors(const std::vector<std::uint32_t>& colors) {
   hidden_faces_hash_ = hidden;
 }
 
+void MeshRenderer::set_edges(const std::vector<unsigned>& edges) {
+  glBindVertexArray(0);  // an index buffer bound now must not become a VAO's own
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, edge_ebo_);
+  glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(edges.size() * sizeof(unsigned)), edges.data(),
+               GL_STATIC_DRAW);
+  edge_index_count_ = GLsizei(edges.size());
+  ++colors_version_;  // the scene shows them
+}
+
 void MeshRenderer::set_vertex_points(const std::vector<unsigned>& shown,
                                      const std::vector<unsigned>& selected) {
   glBindVertexArray(0);  // an index buffer bound now must not become a VAO's own

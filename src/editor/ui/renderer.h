@@ -45,6 +45,8 @@ class MeshRenderer : public Picker {
   // Vertex mode's points (vertex indices): every vertex shown, and the selected ones drawn
   // larger; both empty in face mode.
   void set_vertex_points(const std::vector<unsigned>& shown, const std::vector<unsigned>& selected);
+  // The wireframe's edges (pairs of vertex indices): the topology's, less those of hidden faces.
+  void set_edges(const std::vector<unsigned>& edges);
   void set_ground_grid(const GroundGrid& grid);
   bool has_mesh() const { return triangle_count_ > 0; }
 
