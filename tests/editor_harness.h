@@ -12,6 +12,7 @@
 #include <thread>
 
 #include "editor.h"
+#include "primo/io/mesh_io.h"
 #include "primo/mesh/mesh_generators.h"
 
 namespace primo::editor::harness {
@@ -67,6 +68,19 @@ inline bool settle(Editor& editor) {
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
   }
   return false;
+}
+
+// Opens a tube (radius 0.25, 2 long, 12 x 20 quads, written to `dir`) with its base a fixed
+// region and its top a handle, as one undo step; returns the top handle's index.
+inline int open_tube_with_fixed_base(Editor& editor, const std::string& dir) {
+  save_mesh(make_cylinder(0.25, 2.0, 12, 20, FaceShape::Quads), dir + "/tube.obj");
+  editor.adopt(load_document(dir + "/tube.obj"));
+  Document& doc = *editor.document();
+  const MeshTopology& t = *doc.topology;
+  add_handle(doc.state, t, t.rest_points, faces_where(t, 0.0, 0.1), HandleMode::Fixed);
+  const int top = add_handle(doc.state, t, t.rest_points, faces_where(t, 1.9, 2.0), HandleMode::Pose);
+  editor.commit("handles");
+  return top;
 }
 
 struct Harness {

@@ -156,14 +156,10 @@ TEST(EditorScenario, ASavedPoseReopensAndDeformsToThePoseShown) {
   // short way (-120 degrees), a very different pose; a fixed region made on the posed tube
   // (its fitted pose is not the identity); a spring.
   const std::string dir = test::temp_dir();
-  save_mesh(make_cylinder(0.25, 2.0, 12, 20, FaceShape::Quads), dir + "/tube.obj");
   Editor editor;
-  editor.adopt(load_document(dir + "/tube.obj"));
+  const int top = harness::open_tube_with_fixed_base(editor, dir);
   Document& doc = *editor.document();
   const MeshTopology& t = *doc.topology;
-  add_handle(doc.state, t, t.rest_points, faces_where(t, 0.0, 0.1), HandleMode::Fixed);
-  const int top = add_handle(doc.state, t, t.rest_points, faces_where(t, 1.9, 2.0), HandleMode::Pose);
-  editor.commit("handles");
   for (double degrees : {120.0, 240.0}) {
     doc.state.handles[size_t(top)].pose.rotation = twist(degrees);
     editor.commit("twist");

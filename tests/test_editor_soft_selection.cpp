@@ -65,16 +65,12 @@ TEST(EditorSoftSelection, FalloffReachesFreeFacesWithinTheRadius) {
 
 TEST(EditorSoftSelection, AFadingHandleBendsMoreAroundItAndDeformReproducesIt) {
   const std::string dir = test::temp_dir();
-  save_mesh(make_cylinder(0.25, 2.0, 12, 20, FaceShape::Quads), dir + "/tube.obj");
   std::vector<Vec3> without;
   for (const bool soft : {false, true}) {
     Editor editor;
-    editor.adopt(load_document(dir + "/tube.obj"));
+    const int top = harness::open_tube_with_fixed_base(editor, dir);
     Document& doc = *editor.document();
     const MeshTopology& t = *doc.topology;
-    add_handle(doc.state, t, t.rest_points, faces_where(t, 0.0, 0.1), HandleMode::Fixed);
-    const int top = add_handle(doc.state, t, t.rest_points, faces_where(t, 1.9, 2.0), HandleMode::Pose);
-    editor.commit("handles");
     if (soft) {
       editor.set_falloff_radius(top, 0.6);
       ASSERT_TRUE(doc.state.handles[size_t(top)].falloff);
