@@ -6,7 +6,8 @@ in vec3 view_position;
 in vec3 view_normal;
 
 uniform isamplerBuffer triangle_face;  // fan triangle -> mesh face
-uniform samplerBuffer face_color;      // per face RGBA: overlay colour and coverage
+uniform samplerBuffer face_color;      // per face RGBA: overlay colour and coverage; red
+                                       // without coverage: a hidden face
 uniform bool smooth_shading;
 uniform vec3 base_color;
 
@@ -24,6 +25,7 @@ void main() {
 
   int face = texelFetch(triangle_face, gl_PrimitiveID).r;
   vec4 overlay = texelFetch(face_color, face);
+  if (overlay.a == 0.0 && overlay.r > 0.5) discard;
   vec3 albedo = mix(base_color, overlay.rgb, overlay.a);
   if (!gl_FrontFacing) albedo *= vec3(0.62, 0.55, 0.68);  // inside of the surface
 

@@ -12,6 +12,7 @@
 #include <thread>
 
 #include "editor.h"
+#include "primo/io/mesh_io.h"
 #include "primo/mesh/mesh_generators.h"
 
 namespace primo::editor::harness {
@@ -48,6 +49,39 @@ class CentroidPicker : public Picker {
  private:
   const Editor& e_;
 };
+
+// The faces whose rest centroid's y lies in [y_min, y_max].
+inline std::vector<int> faces_where(const MeshTopology& t, double y_min, double y_max) {
+  std::vector<int> faces;
+  for (int f = 0; f < t.n_faces; ++f) {
+    const double y = t.rest_geometry.centroid[size_t(f)].y();
+    if (y >= y_min && y <= y_max) faces.push_back(f);
+  }
+  return faces;
+}
+
+// Updates `editor` until its solver has settled and no file task runs; false after 30 s.
+inline bool settle(Editor& editor) {
+  for (int i = 0; i < 6000; ++i) {
+    editor.update(0.016);
+    if (editor.settled() && !editor.file_task_running()) return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  return false;
+}
+
+// Opens a tube (radius 0.25, 2 long, 12 x 20 quads, written to `dir`) with its base a fixed
+// region and its top a handle, as one undo step; returns the top handle's index.
+inline int open_tube_with_fixed_base(Editor& editor, const std::string& dir) {
+  save_mesh(make_cylinder(0.25, 2.0, 12, 20, FaceShape::Quads), dir + "/tube.obj");
+  editor.adopt(load_document(dir + "/tube.obj"));
+  Document& doc = *editor.document();
+  const MeshTopology& t = *doc.topology;
+  add_handle(doc.state, t, t.rest_points, faces_where(t, 0.0, 0.1), HandleMode::Fixed);
+  const int top = add_handle(doc.state, t, t.rest_points, faces_where(t, 1.9, 2.0), HandleMode::Pose);
+  editor.commit("handles");
+  return top;
+}
 
 struct Harness {
   Editor editor;

@@ -158,7 +158,7 @@ TEST(EditorKeys, ARebindingInThePreferencesFileDrivesTheEditor) {
 TEST(EditorKeys, TheControlsWindowListsEveryCommandWithItsKeysAndWraps) {
   primo::test::HeadlessImGui imgui;
   Editor e;
-  e.preferences().keys.bind(Action::FrameAll, KeyChord{GLFW_KEY_H, GLFW_MOD_SHIFT}, true);
+  e.preferences().keys.bind(Action::FrameAll, KeyChord{GLFW_KEY_J, GLFW_MOD_SHIFT}, true);
   UiState ui;
   ui.show_help = true;
   for (int frame = 0; frame < 3; ++frame) {
@@ -180,7 +180,7 @@ TEST(EditorKeys, TheControlsWindowListsEveryCommandWithItsKeysAndWraps) {
               1)
         << a.id;
   }
-  EXPECT_EQ(e.key_map().label(Action::FrameAll), "Shift+H") << "the rebound key is listed";
+  EXPECT_EQ(e.key_map().label(Action::FrameAll), "Shift+J") << "the rebound key is listed";
 }
 
 TEST(EditorKeys, ASettleLimitStopsALongSolveAndContinueSolvesOn) {

@@ -11,6 +11,7 @@
 
 #include "document/document.h"
 #include "editor.h"
+#include "editor_harness.h"
 #include "document/paint.h"
 #include "primo/solve/deformer.h"
 #include "primo/util/error.h"
@@ -26,14 +27,7 @@ using namespace primo::editor;
 
 namespace {
 
-std::vector<int> faces_where(const MeshTopology& t, double y_min, double y_max) {
-  std::vector<int> faces;
-  for (int f = 0; f < t.n_faces; ++f) {
-    const double y = t.rest_geometry.centroid[f].y();
-    if (y >= y_min && y <= y_max) faces.push_back(f);
-  }
-  return faces;
-}
+using harness::faces_where;
 
 // A cylinder with a fixed base, a posed top, a position handle, a spring, and painted factors.
 struct EditedCylinder {
@@ -149,14 +143,7 @@ TEST(EditorScenario, BrokenFilesThrowErrors) {
 
 namespace {
 
-bool settle(Editor& editor) {
-  for (int i = 0; i < 6000; ++i) {
-    editor.update(0.016);
-    if (editor.settled() && !editor.file_task_running()) return true;
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  }
-  return false;
-}
+using harness::settle;
 
 Eigen::Quaterniond twist(double degrees) {
   return Eigen::Quaterniond(Eigen::AngleAxisd(degrees * M_PI / 180.0, Vec3::UnitY()));
@@ -169,14 +156,10 @@ TEST(EditorScenario, ASavedPoseReopensAndDeformsToThePoseShown) {
   // short way (-120 degrees), a very different pose; a fixed region made on the posed tube
   // (its fitted pose is not the identity); a spring.
   const std::string dir = test::temp_dir();
-  save_mesh(make_cylinder(0.25, 2.0, 12, 20, FaceShape::Quads), dir + "/tube.obj");
   Editor editor;
-  editor.adopt(load_document(dir + "/tube.obj"));
+  const int top = harness::open_tube_with_fixed_base(editor, dir);
   Document& doc = *editor.document();
   const MeshTopology& t = *doc.topology;
-  add_handle(doc.state, t, t.rest_points, faces_where(t, 0.0, 0.1), HandleMode::Fixed);
-  const int top = add_handle(doc.state, t, t.rest_points, faces_where(t, 1.9, 2.0), HandleMode::Pose);
-  editor.commit("handles");
   for (double degrees : {120.0, 240.0}) {
     doc.state.handles[size_t(top)].pose.rotation = twist(degrees);
     editor.commit("twist");

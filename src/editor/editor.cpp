@@ -331,6 +331,7 @@ SolverTargets targets_of(const EditState& s) {
       targets.turns.push_back(g.pose.known_turn());
     }
   }
+  for (const Force& f : falloff_forces(s)) targets.forces.push_back(f.target_offset);
   return targets;
 }
 
@@ -443,9 +444,16 @@ void Editor::set_selection(const FaceMask& mask, const std::string& label) {
   if (!doc_) return;
   end_gesture_before_edit();
   FaceMask mirrored = mask;
-  mirror_selection(*doc_->state.selection, mirrored);
+  finish_selection(*doc_->state.selection, mirrored);
+  if (selection_mode() == SelectionMode::Vertices)
+    return set_vertex_selection(vertices_of_faces(*doc_->topology, mirrored), label);
   doc_->state.selection = std::make_shared<const FaceMask>(std::move(mirrored));
   commit(label);
+}
+
+void Editor::finish_selection(const FaceMask& before, FaceMask& after) {
+  mirror_selection(before, after);
+  deselect_hidden(after, doc_->state.hidden);
 }
 
 void Editor::select_all() {
@@ -464,6 +472,11 @@ void Editor::clear_selection() {
 
 void Editor::invert_selection() {
   if (!doc_) return;
+  if (selection_mode() == SelectionMode::Vertices) {
+    VertexMask v = *doc_->state.vertex_selection;
+    primo::editor::invert_selection(v);
+    return set_vertex_selection(std::move(v), "Invert selection");
+  }
   FaceMask m = *doc_->state.selection;
   primo::editor::invert_selection(m);
   set_selection(m, "Invert selection");
@@ -471,14 +484,15 @@ void Editor::invert_selection() {
 
 void Editor::grow_selection() {
   if (!doc_) return;
-  FaceMask m = *doc_->state.selection;
-  primo::editor::grow_selection(m, *doc_->topology);
+  // In vertex mode the faces touching the selection: their corners are one ring more.
+  FaceMask m = selection_as_faces();
+  if (selection_mode() == SelectionMode::Faces) primo::editor::grow_selection(m, *doc_->topology);
   set_selection(m, "Grow selection");
 }
 
 void Editor::select_linked(bool by_angle) {
   if (!doc_) return;
-  FaceMask m = *doc_->state.selection;
+  FaceMask m = selection_as_faces();
   if (count_selected(m) == 0) return info("Select a face first: Select Linked grows from it");
   primo::editor::select_linked(m, *doc_->topology, by_angle ? tools.linked_angle_deg : 180.0);
   set_selection(m, by_angle ? "Select linked by angle" : "Select linked");
@@ -486,15 +500,16 @@ void Editor::select_linked(bool by_angle) {
 
 void Editor::shrink_selection() {
   if (!doc_) return;
+  // In vertex mode the faces within the selection: their corners leave out its rim.
   FaceMask m = *doc_->state.selection;
-  primo::editor::shrink_selection(m, *doc_->topology);
+  if (selection_mode() == SelectionMode::Faces) primo::editor::shrink_selection(m, *doc_->topology);
   set_selection(m, "Shrink selection");
 }
 
 void Editor::make_handle(HandleMode mode) {
   if (!doc_) return;
   end_gesture_before_edit();
-  std::vector<int> faces = selected_faces(*doc_->state.selection);
+  std::vector<int> faces = selected_faces(selection_as_faces());
   if (faces.empty())
     return error_in_status("Select faces first: press Q and brush over the surface, then make the handle");
   if (int(faces.size()) == doc_->n_faces() && mode != HandleMode::Spring)
@@ -502,9 +517,7 @@ void Editor::make_handle(HandleMode mode) {
   if (make_mirrored_handles(faces, mode)) return;
   EditState& s = doc_->state;
   const int g = add_handle(s, *doc_->topology, positions(), std::move(faces), mode);
-  FaceMask none = *s.selection;
-  primo::editor::clear_selection(none);
-  s.selection = std::make_shared<const FaceMask>(std::move(none));
+  deselect_all(s);
   commit("New " + std::string(mode_label(mode)) + " '" + s.handles[g].name + "'");
   const std::string tool_note = drag_tool_after_making(mode);
   info("Made '" + s.handles[g].name + "' (" + mode_label(mode) + ") from " +
@@ -577,7 +590,7 @@ void Editor::frame_all() {
 
 void Editor::frame_selection() {
   if (!doc_) return;
-  std::vector<int> faces = selected_faces(*doc_->state.selection);
+  std::vector<int> faces = selected_faces(selection_as_faces());
   const EditState& s = doc_->state;
   if (faces.empty() && s.active >= 0 && s.active < int(s.handles.size())) faces = *s.handles[s.active].faces;
   if (faces.empty()) return frame_all();

@@ -47,6 +47,7 @@ struct ToolSettings {
   // The frame of the gizmo's axes (gizmo_orientation.h); Comma cycles through them.
   GizmoOrientation gizmo_orientation = GizmoOrientation::Global;
   double linked_angle_deg = 30.0;  // select linked by angle stops at sharper edges
+  double falloff_radius = 0.0;     // the last falloff radius set (world units; 0: none yet)
   // Symmetry across the planes perpendicular to X, Y, Z through the mesh's centre: selecting
   // and painting act on the twin faces too, and handles are made in mirrored pairs.
   std::array<bool, 3> mirror{false, false, false};
@@ -179,7 +180,30 @@ class Editor {
   // tools.linked_angle_deg (Ctrl+Shift+L).
   void select_linked(bool by_angle);
   void shrink_selection();
+  // Hide and reveal (editor_visibility.cpp, face_visibility.h): H hides the selection, Shift+H
+  // every face but the selection, Alt+H shows all and selects what was hidden. Undo steps,
+  // with a message saying how many faces are hidden.
+  // Edge loops (face_ring.h): the ring of quads across the edge nearest the cursor on the face
+  // under it; Alt+click with the Select tool, Shift+Alt+click adds. False when nothing was
+  // selected (not on the surface, or no quad at that edge: the status bar says so).
+  bool select_loop_at_cursor(bool add);
+  void hide_selected();
+  void hide_unselected();
+  void reveal_all();
   void make_handle(HandleMode mode);  // from the selection
+  // Vertex mode (1) or face mode (3): converts the selection (vertex_selection.h) as an undo
+  // step and says what the mode does.
+  void set_selection_mode(SelectionMode mode);
+  // Soft selection (soft_selection.h): the handle's falloff radius in world units (0: off), an
+  // undo step; says how many faces it reaches. O turns the active handle's on (the last
+  // radius, at first a tenth of the diagonal) and off; Alt + wheel scales it.
+  void set_falloff_radius(int index, double radius);
+  void toggle_falloff();
+  // Vertex mode while the edit state holds a vertex selection (so undo brings the mode back).
+  SelectionMode selection_mode() const;
+  // The faces the selection stands for: in face mode the selected faces, in vertex mode every
+  // face touching a selected vertex (what a handle takes).
+  FaceMask selection_as_faces() const;
   void delete_handle(int index);
   void reset_handle(int index);
   void reset_all_handles();
@@ -330,6 +354,9 @@ class Editor {
   void drop_gesture();
   void brush_dab();
   std::vector<int> faces_under(const ScreenShape& shape);
+  // The pick buffer under a shape's bounds (empty without a picker).
+  PickImage pick_image_under(const ScreenShape& shape);
+  std::vector<ProjectedPoint> project_points(const std::vector<Vec3>& points) const;
   int face_at_cursor();
   // The surface point under the cursor as shown now: the pick buffer's depth along the mouse
   // ray, else the centroid of the face there.
@@ -337,7 +364,18 @@ class Editor {
   void update_hover();
   void sync_solver();
   void apply_document(std::unique_ptr<Document> doc);
+  // A face mask made by a command; in vertex mode its faces' corners become the selection.
   void set_selection(const FaceMask& mask, const std::string& label);
+  void hide_faces(bool selected);  // the selection's faces, or every other face
+  // Vertex mode: the selected vertices and the faces within them, without an undo step.
+  void store_vertex_selection(VertexMask vertices);
+  void set_vertex_selection(VertexMask vertices, const std::string& label);
+  // A brush, box, lasso or click gesture's items (faces, or vertices in vertex mode).
+  void select_picked(const std::vector<int>& items);
+  std::vector<int> vertices_under(const ScreenShape& shape);
+  int vertex_at_cursor();
+  // Every selection change ends here: mirrored to the twin faces, hidden faces deselected.
+  void finish_selection(const FaceMask& before, FaceMask& after);
   // Symmetry hooks: copy a selection or paint change to the twin faces of every mirror axis
   // that is on, and pose the leading handle's twin as its mirror image.
   void mirror_selection(const FaceMask& before, FaceMask& after);
@@ -414,6 +452,8 @@ class Editor {
   glm::dvec3 drag_anchor_{0.0};
   Pose drag_start_pose_;
   SelectOp select_op_ = SelectOp::Add;
+  // An Alt+click orbits when it moves; one that does not selects a loop (Shift adds).
+  bool loop_click_ = false, loop_click_adds_ = false;
   bool paint_erase_ = false;
   std::unique_ptr<GizmoDrag> gizmo_;
   GizmoPart gizmo_hover_ = GizmoPart::None;

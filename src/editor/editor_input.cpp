@@ -66,6 +66,15 @@ void Editor::on_scroll(const InputEvent& e, bool ui_mouse) {
     tools.brush_radius = std::clamp(tools.brush_radius * std::pow(1.15, e.y), 2.0, 400.0);
     return;
   }
+  // Alt + wheel: the active handle's falloff radius, as Blender's proportional size.
+  if ((held_mods_ & GLFW_MOD_ALT) && doc_ && doc_->state.active >= 0 &&
+      doc_->state.active < int(doc_->state.handles.size())) {
+    const double r = doc_->state.handles[size_t(doc_->state.active)].falloff_radius;
+    const double from = r > 0 ? r : tools.falloff_radius > 0 ? tools.falloff_radius
+                                                              : 0.1 * doc_->topology->bbox_diagonal;
+    set_falloff_radius(doc_->state.active, r > 0 ? from * std::pow(1.15, e.y) : from);
+    return;
+  }
   camera_.dolly(e.y, cursor_);
 }
 
@@ -100,9 +109,11 @@ void Editor::on_mouse_button(const InputEvent& e, bool ui_mouse) {
       gesture_ = (alt || ctrl) ? Gesture::Zoom : shift ? Gesture::Pan : Gesture::Orbit;
       break;
     case GLFW_MOUSE_BUTTON_LEFT:
-      if (alt)
+      if (alt) {
         gesture_ = shift ? Gesture::Pan : Gesture::Orbit;
-      else
+        loop_click_ = tools.tool == Tool::Select && !ctrl;
+        loop_click_adds_ = shift;
+      } else
         begin_tool_gesture(e.mods);
       break;
     default: break;
@@ -232,6 +243,13 @@ void Editor::end_gesture() {
   gesture_ = Gesture::None;
   gesture_button_ = -1;
   std::string what;
+  if (loop_click_ && (g == Gesture::Orbit || g == Gesture::Pan) &&
+      glm::length(cursor_ - press_) < 3.0) {
+    loop_click_ = false;
+    select_loop_at_cursor(loop_click_adds_);
+    return;
+  }
+  loop_click_ = false;
   switch (g) {
     case Gesture::Orbit: what = "orbit"; break;
     case Gesture::Pan: what = "pan"; break;
@@ -242,25 +260,25 @@ void Editor::end_gesture() {
     switch (g) {
       case Gesture::SelectBox:
       case Gesture::SelectLasso: {
-        std::vector<int> faces;
+        // Faces, or vertices in vertex mode.
+        const bool vertices = selection_mode() == SelectionMode::Vertices;
+        std::vector<int> items;
         // A click when the pointer never left the press point; a lasso closed back near its
         // start is still a lasso (it used to select nothing and clear the selection).
         double reach = glm::length(cursor_ - press_);
         if (g == Gesture::SelectLasso)
           for (const glm::dvec2& p : lasso_) reach = std::max(reach, glm::length(p - press_));
         if (reach < 3.0) {
-          const int f = face_at_cursor();  // a click: the face under the cursor
-          if (f >= 0) faces.push_back(f);
-        } else if (g == Gesture::SelectBox) {
-          faces = faces_under(ScreenShape::box(press_, cursor_));
+          // A click: the face under the cursor, or its corner nearest the cursor.
+          const int item = vertices ? vertex_at_cursor() : face_at_cursor();
+          if (item >= 0) items.push_back(item);
         } else {
-          lasso_.push_back(cursor_);
-          faces = faces_under(ScreenShape::lasso(lasso_));
+          if (g == Gesture::SelectLasso) lasso_.push_back(cursor_);
+          const ScreenShape shape = g == Gesture::SelectBox ? ScreenShape::box(press_, cursor_)
+                                                            : ScreenShape::lasso(lasso_);
+          items = vertices ? vertices_under(shape) : faces_under(shape);
         }
-        FaceMask mask = *doc_->state.selection;
-        apply_selection(mask, faces, select_op_);
-        mirror_selection(*doc_->state.selection, mask);
-        doc_->state.selection = std::make_shared<const FaceMask>(std::move(mask));
+        select_picked(items);
         lasso_.clear();
         what = g == Gesture::SelectBox ? "box select" : "lasso select";
         commit(g == Gesture::SelectBox ? "Box select" : "Lasso select");
@@ -321,6 +339,7 @@ bool Editor::dragged_handle_intact() const {
 
 void Editor::drop_gesture() {
   gesture_ = Gesture::None;
+  loop_click_ = false;
   gesture_button_ = -1;
   gizmo_.reset();
   drag_group_ = -1;
@@ -342,16 +361,12 @@ void Editor::cancel_gesture() {
 
 void Editor::brush_dab() {
   const double r = tools.brush_radius * viewport_.scale;
-  const std::vector<int> faces = faces_under(ScreenShape::circle(cursor_, r));
+  const ScreenShape circle = ScreenShape::circle(cursor_, r);
+  if (gesture_ == Gesture::SelectBrush)
+    return select_picked(selection_mode() == SelectionMode::Vertices ? vertices_under(circle)
+                                                                     : faces_under(circle));
+  const std::vector<int> faces = faces_under(circle);
   EditState& s = doc_->state;
-  if (gesture_ == Gesture::SelectBrush) {
-    FaceMask mask = *s.selection;
-    apply_selection(mask, faces, select_op_);
-    mirror_selection(*s.selection, mask);
-    if (mask != *s.selection) s.selection = std::make_shared<const FaceMask>(std::move(mask));
-    overlay_changed_ = true;
-    return;
-  }
   const double value = paint_erase_ ? 1.0
                        : tools.paint_layer == PaintLayer::Height ? tools.paint_height
                                                                  : tools.paint_width;
@@ -374,7 +389,7 @@ void Editor::brush_dab() {
   live_edit();
 }
 
-std::vector<int> Editor::faces_under(const ScreenShape& shape) {
+PickImage Editor::pick_image_under(const ScreenShape& shape) {
   int x0, y0, x1, y1;
   shape.bounds(x0, y0, x1, y1);
   x0 = std::max(x0, 0);
@@ -383,25 +398,40 @@ std::vector<int> Editor::faces_under(const ScreenShape& shape) {
   y1 = std::min(y1, camera_.height());
   PickImage image;
   if (picker_ && x1 > x0 && y1 > y0) image = picker_->read(x0, y0, x1 - x0, y1 - y0);
-  const std::vector<Vec3> centroids = face_centroids(*doc_->topology, positions());
-  std::vector<ProjectedPoint> projected(centroids.size());
+  return image;
+}
+
+std::vector<ProjectedPoint> Editor::project_points(const std::vector<Vec3>& points) const {
+  std::vector<ProjectedPoint> projected(points.size());
   const glm::dmat4 m = camera_.projection() * camera_.view();
   const glm::dvec3 eye = camera_.eye(), forward = camera_.forward();
-  for (size_t f = 0; f < centroids.size(); ++f) {
-    const glm::dvec3 c = to_glm(centroids[f]);
+  for (size_t i = 0; i < points.size(); ++i) {
+    const glm::dvec3 c = to_glm(points[i]);
     const glm::dvec4 clip = m * glm::dvec4(c, 1.0);
-    projected[f].depth = glm::dot(c - eye, forward);
+    projected[i].depth = glm::dot(c - eye, forward);
     if (clip.w <= 0) continue;
-    projected[f].x = (clip.x / clip.w * 0.5 + 0.5) * camera_.width();
-    projected[f].y = (0.5 - clip.y / clip.w * 0.5) * camera_.height();
+    projected[i].x = (clip.x / clip.w * 0.5 + 0.5) * camera_.width();
+    projected[i].y = (0.5 - clip.y / clip.w * 0.5) * camera_.height();
   }
-  return faces_in_shape(shape, image, projected, tools.xray,
-                        0.01 * doc_->topology->bbox_diagonal);
+  return projected;
+}
+
+std::vector<int> Editor::faces_under(const ScreenShape& shape) {
+  std::vector<int> faces =
+      faces_in_shape(shape, pick_image_under(shape),
+                     project_points(face_centroids(*doc_->topology, positions())), tools.xray,
+                     0.01 * doc_->topology->bbox_diagonal);
+  drop_hidden(faces, doc_->state.hidden);
+  return faces;
 }
 
 int Editor::face_at_cursor() {
   if (!doc_ || !cursor_in_viewport()) return -1;
-  if (picker_) return picker_->read(int(cursor_.x), int(cursor_.y), 1, 1).face_at(int(cursor_.x), int(cursor_.y));
+  if (picker_) {
+    // The window's pick pass draws no hidden face; a picker that does, finds none here.
+    const int f = picker_->read(int(cursor_.x), int(cursor_.y), 1, 1).face_at(int(cursor_.x), int(cursor_.y));
+    return is_hidden(doc_->state.hidden, f) ? -1 : f;
+  }
   const std::vector<int> near = faces_under(ScreenShape::circle(cursor_, 4.0));
   return near.empty() ? -1 : near.front();
 }

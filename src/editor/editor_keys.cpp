@@ -65,6 +65,12 @@ bool Editor::run_action(Action action) {
     case Action::SelectShrink: shrink_selection(); return true;
     case Action::SelectLinked: select_linked(false); return true;
     case Action::SelectLinkedByAngle: select_linked(true); return true;
+    case Action::HideSelected: hide_selected(); return true;
+    case Action::HideUnselected: hide_unselected(); return true;
+    case Action::RevealAll: reveal_all(); return true;
+    case Action::SelectVertexMode: set_selection_mode(SelectionMode::Vertices); return true;
+    case Action::SelectFaceMode: set_selection_mode(SelectionMode::Faces); return true;
+    case Action::ToggleFalloff: toggle_falloff(); return true;
     case Action::MirrorX: set_mirror(0, !tools.mirror[0]); return true;
     case Action::MirrorY: set_mirror(1, !tools.mirror[1]); return true;
     case Action::MirrorZ: set_mirror(2, !tools.mirror[2]); return true;

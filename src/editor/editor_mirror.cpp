@@ -137,9 +137,7 @@ bool Editor::make_mirrored_handles(const std::vector<int>& faces, HandleMode mod
   s.handles[size_t(b)].name = base + minus_suffix;
   link_mirror_twins(s, a_now, b, axis);
   s.active = a_now;
-  FaceMask none = *s.selection;
-  primo::editor::clear_selection(none);
-  s.selection = std::make_shared<const FaceMask>(std::move(none));
+  deselect_all(s);
   commit("New mirrored " + std::string(mode_label(mode)) + " '" + base + "'");
   const std::string tool_note = drag_tool_after_making(mode);
   std::string text = "Made '" + base + plus_suffix + "' (" + std::to_string(plus.size()) +

@@ -50,7 +50,7 @@ bool Editor::set_pivot_at(int index, const Vec3& world) {
 
 bool Editor::pivot_to_selection(int index) {
   if (!doc_) return false;
-  const std::vector<int> faces = selected_faces(*doc_->state.selection);
+  const std::vector<int> faces = selected_faces(selection_as_faces());
   if (faces.empty()) {
     info("Select faces first: the pivot goes to the centre of the selection");
     return false;

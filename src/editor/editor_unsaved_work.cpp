@@ -12,6 +12,8 @@ bool Editor::has_unsaved_changes() const {
   if (!doc_) return false;
   EditState saved = doc_->saved_state;
   saved.selection = doc_->state.selection;  // selecting is not work to lose
+  saved.hidden = doc_->state.hidden;        // nor is hiding
+  saved.vertex_selection = doc_->state.vertex_selection;
   return !(doc_->state == saved);
 }
 

@@ -10,7 +10,8 @@ namespace {
 
 bool same_group_structure(const HandleGroup& a, const HandleGroup& b) {
   return same_contents(a.faces, b.faces) && a.mode == b.mode &&
-         (a.mode != HandleMode::Spring || a.stiffness == b.stiffness);
+         ((a.mode != HandleMode::Spring && !a.falloff) || a.stiffness == b.stiffness) &&
+         same_contents(a.falloff, b.falloff);
 }
 
 const char* default_prefix(HandleMode mode) {
@@ -33,13 +34,15 @@ bool operator==(const EditState& a, const EditState& b) {
   if (a.handles.size() != b.handles.size() || !(a.prisms == b.prisms) ||
       !same_factors(a.height_factor, b.height_factor) ||
       !same_factors(a.width_factor, b.width_factor) || !same_contents(a.selection, b.selection) ||
+      !same_hidden(a.hidden, b.hidden) ||
+      !same_contents(a.vertex_selection, b.vertex_selection) ||
       !(a.orientation == b.orientation))
     return false;
   for (size_t i = 0; i < a.handles.size(); ++i) {
     const HandleGroup &x = a.handles[i], &y = b.handles[i];
     if (x.name != y.name || !same_group_structure(x, y) || x.stiffness != y.stiffness ||
         !(x.pose == y.pose) || x.center != y.center || x.mirror_twin != y.mirror_twin ||
-        x.mirror_axis != y.mirror_axis)
+        x.mirror_axis != y.mirror_axis || x.falloff_radius != y.falloff_radius)
       return false;
   }
   return true;
@@ -67,6 +70,7 @@ DeformationInputs deformation_inputs(const EditState& state) {
       in.handles.push_back({g.name, *g.faces, fix, g.transform(), g.pose.known_turn()});
     }
   }
+  for (Force& f : falloff_forces(state)) in.forces.push_back(std::move(f));
   return in;
 }
 
@@ -174,6 +178,37 @@ bool moves_whole_mesh_rigidly(const EditState& state) {
 
 double factor_at(const FactorArray& factors, int face) {
   return factors ? (*factors)[face] : 1.0;
+}
+
+void deselect_all(EditState& state) {
+  if (state.selection)
+    state.selection = std::make_shared<const FaceMask>(state.selection->size(), 0);
+  if (state.vertex_selection)
+    state.vertex_selection = std::make_shared<const VertexMask>(state.vertex_selection->size(), 0);
+}
+
+std::vector<Force> falloff_forces(const EditState& state) {
+  std::vector<Force> forces;
+  for (const HandleGroup& g : state.handles) {
+    if (!g.falloff) continue;
+    // A spring's faces go to their rest centroids plus its translation; the others' with
+    // their rigid motion.
+    RigidTransform motion = g.transform();
+    if (g.mode == HandleMode::Spring) motion = {Mat3::Identity(), g.pose.translate};
+    for (const FalloffFace& f : *g.falloff)
+      forces.push_back({g.name + " falloff", {f.face}, falloff_target_offset(f, motion),
+                        g.stiffness * f.share});
+  }
+  return forces;
+}
+
+void set_falloff(EditState& state, const MeshTopology& topology, int index, double radius) {
+  HandleGroup& g = state.handles[size_t(index)];
+  g.falloff_radius = std::max(0.0, radius);
+  FaceMask taken(size_t(topology.n_faces), 0);
+  for (const HandleGroup& other : state.handles) apply_selection(taken, *other.faces, SelectOp::Add);
+  std::vector<FalloffFace> faces = falloff_faces(topology, *g.faces, g.falloff_radius, taken);
+  g.falloff = faces.empty() ? nullptr : std::make_shared<const std::vector<FalloffFace>>(std::move(faces));
 }
 
 }  // namespace primo::editor

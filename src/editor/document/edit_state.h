@@ -1,18 +1,21 @@
 #pragma once
 // Everything a user edits, as one value: handle groups, global prism settings, painted
-// per-face factors, the selection and the model's orientation. Undo keeps whole EditStates; the large arrays are
-// shared between states until one changes (copy on write), so a step costs what it changed.
+// per-face factors, the selection, hidden faces and the model's orientation. Undo keeps whole
+// EditStates; the large arrays are shared between states until one changes (copy on write), so
+// a step costs what it changed.
 // The solver's input is derived from an EditState, never stored beside it.
 
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "face_visibility.h"
 #include "handle_model.h"
 #include "mesh_topology.h"
 #include "primo/model/constraints.h"
 #include "primo/scenario/scenario.h"
 #include "selection.h"
+#include "vertex_selection.h"
 
 namespace primo::editor {
 
@@ -38,6 +41,12 @@ struct EditState {
   FactorArray height_factor;
   FactorArray width_factor;
   std::shared_ptr<const FaceMask> selection;
+  // Faces hidden from view and selection (face_visibility.h); null while none is. Undone with
+  // the selection, and like it not saved in the scenario nor unsaved work.
+  HiddenFaces hidden;
+  // Vertex mode's selection (vertex_selection.h), null in face mode; `selection` then holds
+  // the faces whose corners are all selected.
+  std::shared_ptr<const VertexMask> vertex_selection;
   // The model's up and front (model_orientation.h): the views and the ground grid follow it.
   // Saved with the scenario, so setting it is an undo step and unsaved work.
   ModelOrientation orientation;
@@ -62,6 +71,9 @@ struct DeformationInputs {
   std::vector<int> group_force;   // engine force index per group, or -1
 };
 DeformationInputs deformation_inputs(const EditState& state);
+// The groups' falloff springs (soft_selection.h), one force a face, in group order: what
+// deformation_inputs puts after the Spring groups' own forces.
+std::vector<Force> falloff_forces(const EditState& state);
 
 // True when the engine can keep its bodies: same groups, modes, stiffnesses, prism settings
 // and factors; only poses may differ.
@@ -82,11 +94,16 @@ std::vector<int> face_groups(const EditState& state, int n_faces);
 int add_handle(EditState& state, const MeshTopology& topology, const std::vector<Vec3>& current,
                std::vector<int> faces, HandleMode mode);
 void remove_handle(EditState& state, int index);
+// Nothing selected, faces nor vertices (the mode stays).
+void deselect_all(EditState& state);
 // Links two groups as mirror twins across the plane perpendicular to `axis`.
 void link_mirror_twins(EditState& state, int a, int b, int axis);
 void set_handle_mode(EditState& state, int index, HandleMode mode);
 // Back to the rest pose.
 void reset_handle(EditState& state, int index);
+
+// Sets a group's falloff radius and the faces it reaches now: the free faces, in no group.
+void set_falloff(EditState& state, const MeshTopology& topology, int index, double radius);
 
 // Per-face factor lookups (1 where null).
 double factor_at(const FactorArray& factors, int face);

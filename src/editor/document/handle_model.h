@@ -12,6 +12,7 @@
 #include "mesh_topology.h"
 #include "primo/model/constraints.h"
 #include "primo/model/turn.h"
+#include "soft_selection.h"
 
 namespace primo::editor {
 
@@ -62,7 +63,11 @@ struct HandleGroup {
   std::string name;
   std::shared_ptr<const std::vector<int>> faces;  // sorted, never empty
   HandleMode mode = HandleMode::Pose;
-  double stiffness = 10.0;     // Spring only: the force's stiffness
+  double stiffness = 10.0;     // a Spring's force, and the falloff's springs
+  // Soft selection (soft_selection.h): the radius in rest-pose world units (0: none) and the
+  // free faces it reached when it was set.
+  double falloff_radius = 0.0;
+  FalloffFaces falloff;
   // The pivot (pivot.h): a point of the rest pose, the faces' rest area-weighted centroid
   // unless placed elsewhere.
   Vec3 center = Vec3::Zero();

@@ -98,6 +98,15 @@ Scenario export_scenario(const EditState& state, const std::string& mesh_path,
     }
     s.handles.push_back(std::move(h));
   }
+  // The falloffs' springs (soft_selection.h), one force a face, as the editor solves them.
+  for (const Force& force : falloff_forces(state)) {
+    ForceSpec f;
+    f.name = force.name;
+    f.select = faces_selection(force.faces);
+    f.target_offset = force.target_offset;
+    f.stiffness = force.stiffness;
+    s.forces.push_back(std::move(f));
+  }
   for (size_t i = 0; i < state.handles.size(); ++i) {
     const HandleGroup& g = state.handles[i];
     const int j = g.mirror_twin;

@@ -26,7 +26,8 @@ enum class Action {
   BrushSmaller, BrushLarger, ToggleXray, CycleGizmoOrientation, Cancel,
   // Selection and handles
   SelectAll, SelectNone, SelectInvert, SelectGrow, SelectShrink, SelectLinked,
-  SelectLinkedByAngle, MirrorX, MirrorY, MirrorZ, MakeHandle, MakeFixedRegion, MakeSpring,
+  SelectLinkedByAngle, HideSelected, HideUnselected, RevealAll, SelectVertexMode,
+  SelectFaceMode, ToggleFalloff, MirrorX, MirrorY, MirrorZ, MakeHandle, MakeFixedRegion, MakeSpring,
   NextHandle, PreviousHandle, ResetHandle, ResetAllHandles, DeleteHandle, PivotToCursor,
   // Files and history
   Undo, Redo, UndoGroup, Open, Save, SaveAs, Export, Screenshot, Quit,

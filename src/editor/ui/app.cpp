@@ -17,6 +17,7 @@
 
 #include "user_files/autosave.h"
 #include "editor.h"
+#include "document/shown_edges.h"
 #include "view/face_colors.h"
 #include "view/frame_pacer.h"
 #include "view/shown_picture.h"
@@ -159,6 +160,7 @@ class App : public ScriptHost {
   InputQueue queue_;  // GLFW's and the script's events, in order, until a panel frame takes them
   UiInput ui_input_;
   const MeshTopology* shown_topology_ = nullptr;
+  HiddenFaces drawn_hidden_;  // the hidden faces the wireframe leaves out
   const ProxyTriangles* shown_proxy_ = nullptr;       // null until the document's proxy is built
   bool software_renderer_ = false;
   std::optional<ModelOrientation> grid_orientation_;  // of the ground grid drawn (none yet)
@@ -309,6 +311,7 @@ void App::sync_renderer() {
   if (shown_topology_ != doc->topology.get()) {
     renderer_->set_topology(*doc->topology);
     shown_topology_ = doc->topology.get();
+    drawn_hidden_.reset();  // the topology's edges are all drawn
     shown_proxy_ = nullptr;
     grid_orientation_.reset();
   }
@@ -354,6 +357,16 @@ void App::sync_renderer() {
     const std::vector<char> without_twin = editor_.faces_without_twin();
     in.without_twin = &without_twin;
     renderer_->set_face_colors(face_overlay_colors(in));
+    // The wireframe loses the edges of hidden faces (uploaded again when the hidden set changes).
+    if (!same_hidden(drawn_hidden_, doc->state.hidden)) {
+      renderer_->set_edges(shown_edges(*doc->topology, doc->state.hidden));
+      drawn_hidden_ = doc->state.hidden;
+    }
+    if (const auto& vertices = doc->state.vertex_selection)
+      renderer_->set_vertex_points(shown_vertices(*doc->topology, doc->state.hidden),
+                                   selected_vertices(*vertices, doc->state.hidden, *doc->topology));
+    else
+      renderer_->set_vertex_points({}, {});
   }
 }
 

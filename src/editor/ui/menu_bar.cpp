@@ -84,11 +84,23 @@ void draw_menu_bar(Editor& e, UiState& ui) {
     }
     if (ImGui::MenuItem("Preferences...")) ui.show_preferences = true;
     ImGui::Separator();
+    const bool vertex_mode = e.selection_mode() == SelectionMode::Vertices;
+    if (ImGui::MenuItem("Vertex mode", keys(Action::SelectVertexMode), vertex_mode, doc != nullptr))
+      e.set_selection_mode(SelectionMode::Vertices);
+    if (ImGui::MenuItem("Face mode", keys(Action::SelectFaceMode), !vertex_mode, doc != nullptr))
+      e.set_selection_mode(SelectionMode::Faces);
     if (ImGui::MenuItem("Select all", keys(Action::SelectAll))) e.select_all();
     if (ImGui::MenuItem("Select none", keys(Action::SelectNone))) e.clear_selection();
     if (ImGui::MenuItem("Invert selection", keys(Action::SelectInvert))) e.invert_selection();
     if (ImGui::MenuItem("Grow selection", keys(Action::SelectGrow))) e.grow_selection();
     if (ImGui::MenuItem("Shrink selection", keys(Action::SelectShrink))) e.shrink_selection();
+    if (ImGui::MenuItem("Select linked", keys(Action::SelectLinked))) e.select_linked(false);
+    if (ImGui::MenuItem("Select linked by angle", keys(Action::SelectLinkedByAngle))) e.select_linked(true);
+    ImGui::Separator();
+    const bool any_hidden = doc && count_hidden(doc->state.hidden) > 0;
+    if (ImGui::MenuItem("Hide selected", keys(Action::HideSelected))) e.hide_selected();
+    if (ImGui::MenuItem("Hide unselected", keys(Action::HideUnselected))) e.hide_unselected();
+    if (ImGui::MenuItem("Reveal all", keys(Action::RevealAll), false, any_hidden)) e.reveal_all();
     ImGui::Separator();
     for (int axis = 0; axis < 3; ++axis) {
       bool on = e.tools.mirror[size_t(axis)];

@@ -105,7 +105,7 @@ void draw_toolbar(Editor& e, UiState& ui, float top, float height) {
     const char* tip;
   };
   const Item items[] = {
-      {Tool::Select, "Select (Q)", "Brush, box (B) or lasso (L) over faces. Shift adds, Ctrl removes."},
+      {Tool::Select, "Select (Q)", "Brush, box (B) or lasso (L) over faces. Shift adds, Ctrl removes. Alt+click: edge loop."},
       {Tool::Drag, "Drag (G)", "Grab a handle and drag it in the view plane; the mesh follows."},
       {Tool::Move, "Move (W)", "Gizmo on the active handle: drag an arrow or the centre square. Ctrl snaps."},
       {Tool::Rotate, "Rotate (E)", "Gizmo on the active handle: drag a ring. Ctrl snaps to 15 degrees."},
@@ -139,6 +139,13 @@ void draw_toolbar(Editor& e, UiState& ui, float top, float height) {
 
 void selection_buttons(Editor& e) {
   const float w = (ImGui::GetContentRegionAvail().x - 2 * ImGui::GetStyle().ItemSpacing.x) / 3;
+  const bool vertex_mode = e.selection_mode() == SelectionMode::Vertices;
+  if (ImGui::RadioButton("Vertices", vertex_mode)) e.set_selection_mode(SelectionMode::Vertices);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("Pick vertices (1); a handle takes every face touching a selected vertex");
+  ImGui::SameLine();
+  if (ImGui::RadioButton("Faces", !vertex_mode)) e.set_selection_mode(SelectionMode::Faces);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Pick faces (3)");
   if (ImGui::Button("All", ImVec2(w, 0))) e.select_all();
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("Select all faces (A)");
   ImGui::SameLine();
@@ -160,6 +167,17 @@ void selection_buttons(Editor& e) {
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("Grow up to edges sharper than %.0f degrees (Ctrl+Shift+L)",
                       e.tools.linked_angle_deg);
+  if (ImGui::Button("Hide", ImVec2(w, 0))) e.hide_selected();
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Hide the selected faces; they still deform (H)");
+  ImGui::SameLine();
+  if (ImGui::Button("Isolate", ImVec2(w, 0))) e.hide_unselected();
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Hide every face but the selection (Shift+H)");
+  ImGui::SameLine();
+  if (ImGui::Button("Reveal", ImVec2(w, 0))) e.reveal_all();
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Show the hidden faces again, selected (Alt+H)");
+  if (const Document* doc = e.document())
+    if (const int hidden = count_hidden(doc->state.hidden))
+      ImGui::TextDisabled("%d face%s hidden", hidden, hidden == 1 ? "" : "s");
 }
 
 // X / Y / Z mirror toggles, for every tool: selecting, painting and making handles.
@@ -362,7 +380,26 @@ void handles_section(Editor& e) {
   ImGui::SetNextItemWidth(-60);
   if (ImGui::Combo("Mode", &mode, modes, 5)) e.set_handle_mode(s.active, HandleMode(mode));
   ImGui::TextDisabled("%zu faces", h.faces->size());
-  if (h.mode == HandleMode::Spring) {
+  {
+    // Soft selection: the radius over which the handle's pull fades (soft_selection.h).
+    double radius = h.falloff_radius;
+    const double zero = 0.0, most = doc->topology->bbox_diagonal;
+    ImGui::SetNextItemWidth(-60);
+    if (ImGui::DragScalar("Falloff", ImGuiDataType_Double, &radius,
+                          float(0.002 * doc->topology->bbox_diagonal), &zero, &most, "%.4f",
+                          ImGuiSliderFlags_AlwaysClamp)) {
+      set_falloff(s, *doc->topology, s.active, radius);
+      e.live_edit();
+    }
+    if (ImGui::IsItemDeactivatedAfterEdit()) e.commit("Falloff of '" + h.name + "'");
+    ImGui::SameLine();
+    help_marker("Soft selection (O, Alt + wheel): the free faces within this distance of the "
+                "handle are pulled after it by springs whose weight fades smoothly to 0 at the "
+                "radius, so its influence fades instead of ending at its edge. Their strength is "
+                "the Stiffness below. 0: off.");
+    if (h.falloff) ImGui::TextDisabled("%zu faces in the falloff", h.falloff->size());
+  }
+  if (h.mode == HandleMode::Spring || h.falloff_radius > 0) {
     double lo = 0.0, hi = 100.0;
     ImGui::SetNextItemWidth(-60);
     track_edit(e, ImGui::SliderScalar("Stiffness", ImGuiDataType_Double, &h.stiffness, &lo, &hi, "%.2f",

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <limits>
 
+#include "view/face_colors.h"
+
 namespace primo::editor {
 namespace {
 
@@ -27,6 +29,8 @@ MeshRenderer::MeshRenderer(const std::string& shader_folder, int samples)
   glGenBuffers(1, &normal_vbo_);
   glGenBuffers(1, &triangle_ebo_);
   glGenBuffers(1, &edge_ebo_);
+  glGenBuffers(1, &point_ebo_);
+  glGenBuffers(1, &selected_point_ebo_);
   glBindVertexArray(vao_);
   glBindBuffer(GL_ARRAY_BUFFER, position_vbo_);
   glEnableVertexAttribArray(0);
@@ -74,7 +78,8 @@ MeshRenderer::MeshRenderer(const std::string& shader_folder, int samples)
 MeshRenderer::~MeshRenderer() {
   const GLuint buffers[] = {position_vbo_, normal_vbo_, triangle_ebo_, edge_ebo_,
                             triangle_face_buffer_, color_buffer_, prism_vbo_, prism_ebo_,
-                            proxy_ebo_, proxy_face_buffer_, grid_vbo_};
+                            proxy_ebo_, proxy_face_buffer_, grid_vbo_, point_ebo_,
+                            selected_point_ebo_};
   glDeleteBuffers(GLsizei(std::size(buffers)), buffers);
   const GLuint textures[] = {triangle_face_texture_, color_texture_, pick_id_, pick_depth_,
                              proxy_face_texture_};
@@ -165,6 +170,35 @@ void MeshRenderer::set_face_colors(const std::vector<std::uint32_t>& colors) {
   glBindTexture(GL_TEXTURE_BUFFER, color_texture_);
   glTexBuffer(GL_TEXTURE_BUFFER, GL_RGBA8, color_buffer_);
   ++colors_version_;
+  // Hiding or revealing faces changes what can be picked: the pick pass is drawn again.
+  std::uint64_t hidden = 0;
+  for (size_t f = 0; f < colors.size(); ++f)
+    if (is_hidden_color(colors[f])) hidden = hidden * 1000003u + f + 1;
+  if (hidden != hidden_faces_hash_) picked_version_ = 0;
+  hidden_faces_hash_ = hidden;
+}
+
+void MeshRenderer::set_edges(const std::vector<unsigned>& edges) {
+  glBindVertexArray(0);  // an index buffer bound now must not become a VAO's own
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, edge_ebo_);
+  glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(edges.size() * sizeof(unsigned)), edges.data(),
+               GL_STATIC_DRAW);
+  edge_index_count_ = GLsizei(edges.size());
+  ++colors_version_;  // the scene shows them
+}
+
+void MeshRenderer::set_vertex_points(const std::vector<unsigned>& shown,
+                                     const std::vector<unsigned>& selected) {
+  glBindVertexArray(0);  // an index buffer bound now must not become a VAO's own
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, point_ebo_);
+  glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(shown.size() * sizeof(unsigned)), shown.data(),
+               GL_DYNAMIC_DRAW);
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, selected_point_ebo_);
+  glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(selected.size() * sizeof(unsigned)),
+               selected.data(), GL_DYNAMIC_DRAW);
+  point_count_ = GLsizei(shown.size());
+  selected_point_count_ = GLsizei(selected.size());
+  ++colors_version_;  // the scene shows them
 }
 
 void MeshRenderer::set_ground_grid(const GroundGrid& grid) {
@@ -316,6 +350,24 @@ void MeshRenderer::render_scene(const DisplaySettings& display, int width, int h
     glDepthMask(GL_TRUE);
     glDisable(GL_BLEND);
   }
+
+  // 5. Vertex mode: the vertices as points on the surface, the selected ones larger.
+  if (!proxy && point_count_ + selected_point_count_ > 0) {
+    lines_.use();
+    upload_matrix(lines_.uniform("view"), camera_->view());
+    upload_matrix(lines_.uniform("projection"), camera_->projection());
+    glBindVertexArray(vao_);
+    glPointSize(3.0f);
+    glUniform4f(lines_.uniform("color"), 0.05f, 0.05f, 0.06f, 1.0f);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, point_ebo_);
+    glDrawElements(GL_POINTS, point_count_, GL_UNSIGNED_INT, nullptr);
+    glPointSize(7.0f);
+    glUniform4f(lines_.uniform("color"), 1.0f, 0.6f, 0.11f, 1.0f);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, selected_point_ebo_);
+    glDrawElements(GL_POINTS, selected_point_count_, GL_UNSIGNED_INT, nullptr);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, triangle_ebo_);  // the VAO's own index buffer
+    glPointSize(1.0f);
+  }
   glBindVertexArray(0);
   glDisable(GL_DEPTH_TEST);
 }
@@ -385,6 +437,10 @@ void MeshRenderer::render_pick() {
   glActiveTexture(GL_TEXTURE0);
   glBindTexture(GL_TEXTURE_BUFFER, triangle_face_texture_);
   glUniform1i(pick_.uniform("triangle_face"), 0);
+  glActiveTexture(GL_TEXTURE1);
+  glBindTexture(GL_TEXTURE_BUFFER, color_texture_);
+  glUniform1i(pick_.uniform("face_color"), 1);
+  glActiveTexture(GL_TEXTURE0);
   glBindVertexArray(vao_);
   glDrawElements(GL_TRIANGLES, 3 * triangle_count_, GL_UNSIGNED_INT, nullptr);
   glBindVertexArray(0);

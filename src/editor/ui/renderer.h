@@ -42,6 +42,11 @@ class MeshRenderer : public Picker {
   void set_geometry(const std::vector<float>& positions, const std::vector<float>& normals);
   void set_prism_corners(const std::vector<float>& corners);  // empty: none to show
   void set_face_colors(const std::vector<std::uint32_t>& colors);
+  // Vertex mode's points (vertex indices): every vertex shown, and the selected ones drawn
+  // larger; both empty in face mode.
+  void set_vertex_points(const std::vector<unsigned>& shown, const std::vector<unsigned>& selected);
+  // The wireframe's edges (pairs of vertex indices): the topology's, less those of hidden faces.
+  void set_edges(const std::vector<unsigned>& edges);
   void set_ground_grid(const GroundGrid& grid);
   bool has_mesh() const { return triangle_count_ > 0; }
 
@@ -78,6 +83,8 @@ class MeshRenderer : public Picker {
   GLuint prism_vao_ = 0, prism_vbo_ = 0, prism_ebo_ = 0;
   GLuint empty_vao_ = 0;
   GLsizei triangle_count_ = 0, edge_index_count_ = 0, prism_index_count_ = 0;
+  GLuint point_ebo_ = 0, selected_point_ebo_ = 0;
+  GLsizei point_count_ = 0, selected_point_count_ = 0;
   bool prisms_uploaded_ = false;
   GLuint proxy_ebo_ = 0, proxy_face_buffer_ = 0, proxy_face_texture_ = 0;
   GLsizei proxy_count_ = 0;
@@ -111,6 +118,7 @@ class MeshRenderer : public Picker {
   GLuint pick_fbo_ = 0, pick_id_ = 0, pick_depth_ = 0, pick_z_ = 0;
   int pick_width_ = 0, pick_height_ = 0;
   std::uint64_t geometry_version_ = 1, picked_version_ = 0;
+  std::uint64_t hidden_faces_hash_ = 0;  // which faces the colours hide
   glm::dmat4 picked_matrix_{0.0};
 };
 

@@ -94,6 +94,11 @@ std::vector<std::uint32_t> face_overlay_colors(const OverlayInputs& in) {
       if ((*in.without_twin)[size_t(f)]) over(c[f], without_twin_color(), 0.55f);
   // Over the heat map, handles and the selection are lighter so the energy shows through.
   const float dim = in.face_energy ? 0.5f : 1.0f;
+  // The active handle's falloff, shaded by weight (soft_selection.h).
+  if (s.active >= 0 && s.active < int(s.handles.size()) && s.handles[size_t(s.active)].falloff)
+    for (const FalloffFace& f : *s.handles[size_t(s.active)].falloff)
+      if (f.face >= 0 && f.face < in.n_faces)
+        over(c[size_t(f.face)], handle_color(s.handles[size_t(s.active)]), dim * float(0.6 * f.weight));
   for (size_t g = 0; g < s.handles.size(); ++g) {
     const HandleGroup& h = s.handles[g];
     float alpha = dim * (int(g) == s.active ? 0.8f : 0.55f);
@@ -107,6 +112,9 @@ std::vector<std::uint32_t> face_overlay_colors(const OverlayInputs& in) {
       if ((*s.selection)[f]) over(c[f], selection_color(), dim * 0.7f);
   std::vector<std::uint32_t> packed(c.size());
   std::transform(c.begin(), c.end(), packed.begin(), pack);
+  if (s.hidden)
+    for (int f = 0; f < in.n_faces && f < int(s.hidden->size()); ++f)
+      if ((*s.hidden)[size_t(f)]) packed[size_t(f)] = kHiddenFaceColor;
   return packed;
 }
 

@@ -36,8 +36,13 @@ struct OverlayInputs {
   const std::vector<char>* without_twin = nullptr;
 };
 
+// A hidden face's overlay (face_visibility.h): the surface and pick shaders discard it. No
+// other face has it: a face nothing covers is all 0.
+constexpr std::uint32_t kHiddenFaceColor = 0x000000FFu;
+inline bool is_hidden_color(std::uint32_t c) { return c == kHiddenFaceColor; }
+
 // RGBA8 per face packed as R | G << 8 | B << 16 | A << 24 (A = how much it covers the
-// material colour).
+// material colour), or kHiddenFaceColor.
 std::vector<std::uint32_t> face_overlay_colors(const OverlayInputs& in);
 
 }  // namespace primo::editor

@@ -76,26 +76,33 @@ float PickImage::depth_at(int x, int y) const {
                         : std::numeric_limits<float>::infinity();
 }
 
-std::vector<int> faces_in_shape(const ScreenShape& shape, const PickImage& image,
-                                const std::vector<ProjectedPoint>& centroids, bool xray,
-                                double depth_tolerance) {
-  std::vector<int> faces;
-  // 1. Faces that own a pixel inside the shape (pixel centres are tested).
-  for (int y = image.y0; y < image.y0 + image.height; ++y)
-    for (int x = image.x0; x < image.x0 + image.width; ++x) {
-      const int f = image.face_at(x, y);
-      if (f >= 0 && shape.contains({x + 0.5, y + 0.5})) faces.push_back(f);
-    }
-  // 2. Faces whose centroid projects inside and is visible there (or any, with x-ray).
-  for (size_t f = 0; f < centroids.size(); ++f) {
-    const ProjectedPoint& c = centroids[f];
+std::vector<int> points_in_shape(const ScreenShape& shape, const PickImage& image,
+                                 const std::vector<ProjectedPoint>& points, bool xray,
+                                 double depth_tolerance) {
+  std::vector<int> inside;
+  for (size_t i = 0; i < points.size(); ++i) {
+    const ProjectedPoint& c = points[i];
     if (c.depth <= 0.0 || !shape.contains({c.x, c.y})) continue;
     if (!xray) {
       const float seen = image.depth_at(int(std::floor(c.x)), int(std::floor(c.y)));
       if (double(seen) < c.depth - depth_tolerance) continue;
     }
-    faces.push_back(int(f));
+    inside.push_back(int(i));
   }
+  return inside;
+}
+
+std::vector<int> faces_in_shape(const ScreenShape& shape, const PickImage& image,
+                                const std::vector<ProjectedPoint>& centroids, bool xray,
+                                double depth_tolerance) {
+  // 1. Faces whose centroid projects inside and is visible there (or any, with x-ray).
+  std::vector<int> faces = points_in_shape(shape, image, centroids, xray, depth_tolerance);
+  // 2. Faces that own a pixel inside the shape (pixel centres are tested).
+  for (int y = image.y0; y < image.y0 + image.height; ++y)
+    for (int x = image.x0; x < image.x0 + image.width; ++x) {
+      const int f = image.face_at(x, y);
+      if (f >= 0 && shape.contains({x + 0.5, y + 0.5})) faces.push_back(f);
+    }
   std::sort(faces.begin(), faces.end());
   faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
   return faces;

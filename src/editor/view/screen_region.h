@@ -42,10 +42,17 @@ struct PickImage {
   float depth_at(int x, int y) const;
 };
 
-// A face centroid on screen: viewport pixel position and eye depth (<= 0: behind the eye).
+// A point on screen (a face centroid, a vertex): viewport pixel position and eye depth (<= 0:
+// behind the eye).
 struct ProjectedPoint {
   double x = 0.0, y = 0.0, depth = 0.0;
 };
+
+// The points that project inside `shape` and are visible there: not behind what `image`
+// shows by more than `depth_tolerance` (world units), or any with x-ray. Sorted ascending.
+std::vector<int> points_in_shape(const ScreenShape& shape, const PickImage& image,
+                                 const std::vector<ProjectedPoint>& points, bool xray,
+                                 double depth_tolerance);
 
 // Faces under `shape`, sorted ascending. `image` should cover the shape's bounds.
 // `depth_tolerance` (world units) decides when a centroid counts as hidden.
