@@ -61,7 +61,8 @@ std::vector<ActionInfo> make_actions() {
        {{GLFW_KEY_Z, kAlt}}},
       {A::CycleGizmoOrientation, "cycle_gizmo_orientation", tools,
        "gizmo axes: global, local, normal, view", {{GLFW_KEY_COMMA, 0}}},
-      {A::Cancel, "cancel", tools, "cancel the current drag or stroke", {{GLFW_KEY_ESCAPE, 0}}},
+      {A::Cancel, "cancel", tools, "cancel the current drag or stroke, else an open under way",
+       {{GLFW_KEY_ESCAPE, 0}}},
 
       {A::SelectAll, "select_all", sel, "select all", {{GLFW_KEY_A, 0}}},
       {A::SelectNone, "select_none", sel, "select none", {{GLFW_KEY_A, kAlt}}},

@@ -33,6 +33,8 @@ std::vector<ControlsSection> controls_sections(const KeyMap& keys) {
         {"Left drag", "the tool: select, drag a handle, use the gizmo, paint"},
         {"Shift / Ctrl + select", "add to / remove from the selection"},
         {"Ctrl + wheel", "brush radius"},
+        {"Alt + click / Shift + Alt + click", "the loop of quads across an edge / add it"},
+        {"Alt + wheel", "the active handle's falloff radius"},
         {"Ctrl + Shift + right click", "the active handle's pivot to the surface there"},
         {"Right click", "cancel the current drag or stroke"}}}};
   for (const ActionInfo& a : all_actions()) {
