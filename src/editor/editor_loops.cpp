@@ -1,6 +1,6 @@
 // Edge loops: Alt+click on an edge selects the ring of quads across it (face_ring.h).
 
-#include "document/face_ring.h"
+#include "document/selection/face_ring.h"
 #include "editor.h"
 
 namespace primo::editor {

@@ -21,7 +21,7 @@
 #include <vector>
 
 #include "document/edit_state.h"
-#include "document/mesh_topology.h"
+#include "document/selection/mesh_topology.h"
 #include "primo/solve/deformer.h"
 #include "primo/scenario/scenario.h"
 

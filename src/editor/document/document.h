@@ -6,7 +6,7 @@
 #include <string>
 
 #include "edit_state.h"
-#include "mesh_topology.h"
+#include "document/selection/mesh_topology.h"
 #include "proxy_mesh.h"
 #include "primo/mesh/mesh_attributes.h"
 #include "primo/scenario/scenario.h"

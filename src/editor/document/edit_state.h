@@ -9,13 +9,13 @@
 #include <string>
 #include <vector>
 
-#include "face_visibility.h"
+#include "document/selection/face_visibility.h"
 #include "handle_model.h"
-#include "mesh_topology.h"
+#include "document/selection/mesh_topology.h"
 #include "primo/model/constraints.h"
 #include "primo/scenario/scenario.h"
-#include "selection.h"
-#include "vertex_selection.h"
+#include "document/selection/selection.h"
+#include "document/selection/vertex_selection.h"
 
 namespace primo::editor {
 

@@ -9,10 +9,10 @@
 #include <string>
 #include <vector>
 
-#include "mesh_topology.h"
+#include "document/selection/mesh_topology.h"
 #include "primo/model/constraints.h"
 #include "primo/model/turn.h"
-#include "soft_selection.h"
+#include "document/selection/soft_selection.h"
 
 namespace primo::editor {
 

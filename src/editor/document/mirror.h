@@ -20,8 +20,8 @@
 
 #include "edit_state.h"
 #include "handle_model.h"
-#include "mesh_topology.h"
-#include "selection.h"
+#include "document/selection/mesh_topology.h"
+#include "document/selection/selection.h"
 
 namespace primo::editor {
 

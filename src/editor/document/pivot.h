@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "handle_model.h"
-#include "mesh_topology.h"
+#include "document/selection/mesh_topology.h"
 
 namespace primo::editor {
 

@@ -17,7 +17,7 @@
 #include <optional>
 #include <vector>
 
-#include "mesh_topology.h"
+#include "document/selection/mesh_topology.h"
 
 namespace primo::editor {
 

@@ -14,7 +14,7 @@
 #include "controls_window.h"
 #include "view/euler_angles.h"
 #include "view/face_colors.h"
-#include "gizmo_draw.h"
+#include "render/gizmo_draw.h"
 #include "menu_bar.h"
 #include "paths.h"
 #include "preferences_window.h"

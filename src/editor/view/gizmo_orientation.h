@@ -9,7 +9,7 @@
 
 #include "camera.h"
 #include "document/handle_model.h"
-#include "document/mesh_topology.h"
+#include "document/selection/mesh_topology.h"
 
 namespace primo::editor {
 

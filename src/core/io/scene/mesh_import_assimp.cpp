@@ -42,16 +42,16 @@
 #include <unordered_map>
 #include <vector>
 
-#include "collada_checks.h"
-#include "fbx_checks.h"
-#include "gltf_accessor_checks.h"
-#include "gltf_buffer_files.h"
-#include "gltf_limits.h"
+#include "checks/collada_checks.h"
+#include "checks/fbx_checks.h"
+#include "checks/gltf_accessor_checks.h"
+#include "checks/gltf_buffer_files.h"
+#include "checks/gltf_limits.h"
 #include "../mesh_export_gltf.h"
 #include "scene_attributes.h"
 #include "scene_reader_process.h"
 #include "scene_signature.h"
-#include "threemf_checks.h"
+#include "checks/threemf_checks.h"
 #include "primo/util/error.h"
 #include "primo/io/input_files.h"
 #include "primo/io/mesh_import.h"

@@ -1,0 +1,144 @@
+// Session files (docs/sessions.md), without the editor: recording states into events, the
+// file round trip, validation errors naming the event, and the shipped session.
+
+#include <gtest/gtest.h>
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "primo/util/error.h"
+#include "primo/io/mesh_io.h"
+#include "primo/sessions/session.h"
+#include "support/session_support.h"
+#include "support/test_support.h"
+
+using namespace primo;
+using primo::test::record_bar_session;
+using primo::test::RecordedSession;
+
+namespace {
+
+using primo::test::error_of;
+
+}  // namespace
+
+TEST(SessionFile, RecorderTurnsStatesIntoEvents) {
+  const RecordedSession r = record_bar_session("bar.obj");
+  std::vector<std::string> types;
+  for (const SessionEvent& e : r.session.events) types.push_back(event_type_name(e.type));
+  const std::vector<std::string> expected = {
+      "handles", "handles", "targets", "targets", "targets", "targets", "targets", "targets",
+      "targets", "targets", "targets", "targets", "targets", "targets", "factors", "prisms",
+      "undo",    "prisms",  "redo",    "prisms"};
+  EXPECT_EQ(types, expected);
+  // Targets carry only the handle that moved, one event per frame, with times and frames.
+  EXPECT_EQ(r.session.events[2].poses.size(), 1u);
+  EXPECT_EQ(r.session.events[2].poses[0].handle, 1);
+  EXPECT_EQ(r.session.events[0].frame, 1);
+  EXPECT_EQ(r.session.events[3].frame, r.session.events[2].frame + 1);
+  EXPECT_GT(r.session.events.back().t, r.session.events.front().t);
+  // Replaying the events on the initial state gives the last recorded state exactly.
+  EXPECT_TRUE(validate_session(r.session, int(r.mesh.n_faces())) == r.final_state);
+}
+
+TEST(SessionFile, RoundTripIsExact) {
+  const RecordedSession r = record_bar_session("bar.obj");
+  const std::string dir = primo::test::temp_dir();
+  const std::string text = session_to_json(r.session, dir + "/a.session.json");
+  const Session back = parse_session(text, dir + "/a.session.json");
+  EXPECT_EQ(session_to_json(back, dir + "/a.session.json"), text);
+  ASSERT_EQ(back.events.size(), r.session.events.size());
+  EXPECT_TRUE(validate_session(back, int(r.mesh.n_faces())) == r.final_state);
+  EXPECT_NE(text.find("\"format\": \"primo-session/1\""), std::string::npos);
+}
+
+TEST(SessionFile, PrismsKeepTheirHeightUnit) {
+  const RecordedSession r = record_bar_session("bar.obj");
+  const std::string text = session_to_json(r.session, "");
+  // The editor's default material is written as half_thickness (a fraction of the diagonal).
+  ASSERT_NE(text.find("\"half_thickness\""), std::string::npos);
+  // A session of the format's height in mean edge lengths reads back in that unit.
+  std::string legacy = text;
+  for (size_t at; (at = legacy.find("\"half_thickness\"")) != std::string::npos;)
+    legacy.replace(at, 16, "\"height\"");
+  const Session back = parse_session(legacy, "s.json");
+  EXPECT_EQ(back.initial.prisms.height_unit, HeightUnit::MeanEdgeLength);
+  EXPECT_EQ(back.initial.prisms.height, r.session.initial.prisms.height);
+  // Both keys at once are an error naming where.
+  std::string both = text;
+  both.insert(both.find("\"half_thickness\""), "\"height\": 1, ");
+  EXPECT_NE(error_of([&] { parse_session(both, "s.json"); }).find("exactly one of"), std::string::npos);
+}
+
+TEST(SessionFile, AcceptsEveryMaterialTheEditorCanMake) {
+  // The Shell/plate slider goes below 0 (detail enhancement) and the thickness slider to 0
+  // (a membrane): a session recorded with those loads and validates, as a scenario would.
+  RecordedSession r = record_bar_session("bar.obj");
+  r.session.initial.prisms.normal_blend = -0.47;
+  r.session.initial.prisms.height = 0.0;
+  for (SessionEvent& event : r.session.events)
+    if (event.type == SessionEvent::Type::Prisms) event.prisms.normal_blend = 1.4;
+  const std::string text = session_to_json(r.session, "");
+  const Session back = parse_session(text, "s.json");
+  EXPECT_EQ(back.initial.prisms.normal_blend, -0.47);
+  EXPECT_NO_THROW(validate_session(back, int(r.mesh.n_faces())));
+  // Out of every range still is an error naming the key.
+  Session negative = r.session;
+  negative.initial.prisms.width = -1.0;
+  const std::string bad = session_to_json(negative, "");
+  EXPECT_NE(error_of([&] { parse_session(bad, "s.json"); }).find("width: must be positive"),
+            std::string::npos);
+}
+
+TEST(SessionFile, ErrorsNameTheEvent) {
+  const RecordedSession r = record_bar_session("bar.obj");
+  const std::string text = session_to_json(r.session, "");
+  const int n = int(r.mesh.n_faces());
+  auto parse_error = [&](const std::string& t) { return error_of([&] { parse_session(t, "s.json"); }); };
+  // An unknown key in event 3 (a targets event).
+  std::string bad = text;
+  const size_t p3 = bad.find("\"type\":\"targets\"", bad.find("\"type\":\"targets\"") + 1);
+  bad.insert(p3, "\"speed\":1,");
+  EXPECT_EQ(parse_error(bad), "s.json: events[3] (targets): speed: unknown key");
+  // A truncated file names the event it stops in.
+  const size_t cut = text.find("\"type\":\"factors\"") + 30;
+  const std::string truncated = parse_error(text.substr(0, cut));
+  EXPECT_NE(truncated.find("s.json: events[14] (factors): the file ends early"), std::string::npos) << truncated;
+  // An unknown event type.
+  std::string unknown = text;
+  unknown.replace(unknown.find("\"type\":\"prisms\""), 15, "\"type\":\"prismz\"");
+  EXPECT_NE(parse_error(unknown).find("events[15] (prismz): type: unknown event type"), std::string::npos);
+  // A bad quaternion.
+  Session s = r.session;
+  std::string q = session_to_json(s, "");
+  const size_t rot = q.find("\"rotation\":[", q.find("\"type\":\"targets\""));
+  q.replace(rot + 12, q.find(',', rot) - rot - 12, "2");
+  EXPECT_NE(parse_error(q).find("events[3] (targets): poses[0].rotation: not a unit quaternion"), std::string::npos)
+      << parse_error(q);
+  // Events that parse but do not fit the state or the mesh.
+  s.events[5].poses[0].handle = 7;
+  EXPECT_EQ(error_of([&] { validate_session(s, n); }),
+            "session: events[5] (targets): poses[0].handle: no handle 7 (there are 2)");
+  s = r.session;
+  s.events[14].faces[0] = n + 3;
+  EXPECT_NE(error_of([&] { validate_session(s, n); }).find("events[14] (factors): faces[0]: face "),
+            std::string::npos);
+  s = r.session;
+  s.events[1].handles[1].faces = s.events[1].handles[0].faces;
+  EXPECT_NE(error_of([&] { validate_session(s, n); }).find("events[1] (handles): handles[1].faces: face"),
+            std::string::npos);
+  EXPECT_NE(parse_error("{\"format\": \"primo-session/2\"}").find("format"), std::string::npos);
+}
+
+TEST(SessionFile, ShippedSessionIsValid) {
+  const Session s = load_session(primo::test::source_path("assets/sessions/spot-pose.session.json"));
+  const Mesh mesh = load_mesh(s.mesh_path);
+  const SessionState end = validate_session(s, int(mesh.n_faces()));
+  EXPECT_EQ(end.handles.size(), 3u);
+  EXPECT_GT(s.events.size(), 20u);
+  bool undo = false, redo = false;
+  for (const SessionEvent& ev : s.events)
+    undo = undo || ev.type == SessionEvent::Type::Undo, redo = redo || ev.type == SessionEvent::Type::Redo;
+  EXPECT_TRUE(undo && redo);
+}
