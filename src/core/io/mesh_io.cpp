@@ -40,6 +40,7 @@
 #include "primo/io/input_files.h"
 #include "primo/io/mesh_import.h"
 #include "primo/io/output_files.h"
+#include "../mesh/mesh_validation.h"
 #include "../mesh/silence_openmesh.h"
 
 namespace fs = std::filesystem;

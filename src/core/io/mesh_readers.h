@@ -20,11 +20,6 @@ PolygonSoup read_om(const std::string& path, std::string_view bytes);
 PolygonSoup read_binary_off(const std::string& path, std::string_view keyword,
                             std::string_view data);
 
-// The geometric checks a read mesh passes (finite coordinates, faces of non-zero area up to
-// their coordinates' rounding; mesh_from_soup), on a soup whose structure is known to be
-// valid: what a writer checks of the points it is about to round.
-void check_soup_geometry(const PolygonSoup& soup, const std::string& source);
-
 // `text` quoted for a message, at most 40 characters, control and non-ASCII bytes as \xNN: a
 // file's bytes never reach the terminal raw.
 std::string quoted(std::string_view text);

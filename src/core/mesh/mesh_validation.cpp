@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "primo/util/error.h"
+#include "mesh_validation.h"
 #include "primo/mesh/polygon_soup.h"
 #include "silence_openmesh.h"
 
