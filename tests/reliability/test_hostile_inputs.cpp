@@ -1,6 +1,6 @@
 // Hostile scenarios, sessions, scripts and numbers: what the fuzzing pass crashed,
-// hung or silently got wrong outside the mesh readers (tests/core/io/test_hostile_meshes.cpp). Each is
-// one clear error naming the file, or the right result.
+// hung or silently got wrong outside the mesh readers (tests/core/io/test_hostile_meshes.cpp). Each
+// is one clear error naming the file, or the right result.
 
 #include <fcntl.h>
 #include <gtest/gtest.h>

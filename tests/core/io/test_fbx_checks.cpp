@@ -1,6 +1,6 @@
 // An FBX file's records and model tree are checked before Assimp reads them
-// (src/core/io/scene/checks/fbx_checks.h): a model that is its own parent, a cycle, an instancing bomb, a
-// tree or a nesting too deep, a record running past its parent, in binary and ASCII files,
+// (src/core/io/scene/checks/fbx_checks.h): a model that is its own parent, a cycle, an instancing
+// bomb, a tree or a nesting too deep, a record running past its parent, in binary and ASCII files,
 // are refused in one line naming the rule; real files still load.
 
 #include <gtest/gtest.h>

@@ -1,9 +1,9 @@
 // A glTF asset's buffers, buffer views, accessors, primitives, skins and animation samplers are
-// checked before Assimp reads them (src/core/io/scene/checks/gltf_accessor_checks.h): each file below made
-// Assimp 5.2 allocate gigabytes, crash, write or read past its arrays, read overlapping or
-// foreign bytes, or drop a face without a word. Each is refused in one line naming the rule,
-// whether its bytes come in a data: URI, a .glb's binary chunk or a .bin file beside the .gltf,
-// and sound assets (sparse, skinned and animated ones, PriMo's own files) still load.
+// checked before Assimp reads them (src/core/io/scene/checks/gltf_accessor_checks.h): each file
+// below made Assimp 5.2 allocate gigabytes, crash, write or read past its arrays, read overlapping
+// or foreign bytes, or drop a face without a word. Each is refused in one line naming the rule,
+// whether its bytes come in a data: URI, a .glb's binary chunk or a .bin file beside the .gltf, and
+// sound assets (sparse, skinned and animated ones, PriMo's own files) still load.
 
 #include <gtest/gtest.h>
 
