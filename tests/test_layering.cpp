@@ -45,6 +45,7 @@ const std::vector<std::pair<std::string, std::string>> kFolders = {
     {"src/bench", "bench"},
     {"src/editor", "editor"},
     {"src/editor/document", "editor"},
+    {"src/editor/document/selection", "editor"},
     {"src/editor/view", "editor"},
     {"src/editor/input", "editor"},
     {"src/editor/user_files", "editor"},
