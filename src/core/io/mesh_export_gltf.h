@@ -66,6 +66,29 @@ void append_raw(std::string& out, const std::vector<T>& values) {
 std::string gltf_bytes(const Mesh& mesh, const MeshAttributes& attributes, bool binary,
                        const std::string& name, const std::string& path);
 
+// The document gltf_bytes(mesh, attributes, ...) makes a file of: the plain one above without
+// attributes, else one node and mesh per material, all sharing the vertex accessors.
+GltfDocument gltf_document(const Mesh& mesh, const MeshAttributes& attributes, bool binary,
+                           const std::string& name, const std::string& path);
+
+// Whether the attributes change the glTF written (UVs, colours, normal slots or materials).
+bool has_gltf_attributes(const MeshAttributes& attributes);
+
+// The vertices of the file gltf_document(mesh, attributes, ...) writes: without attributes the
+// mesh's own; with them one per distinct (vertex, normal slot, UVs, colours) of the corners,
+// numbered in the order the corners first use them.
+struct GltfVertices {
+  std::vector<uint32_t> corner_vertex;  // per face corner, its glTF vertex
+  std::vector<int> mesh_vertex;         // per glTF vertex, the mesh vertex it copies
+  std::vector<int> normal_slot;         // per glTF vertex, its normal slot (-1: vertex normal)
+  std::vector<size_t> first_corner;     // with attributes, per glTF vertex, its first corner
+};
+GltfVertices gltf_vertices(const Mesh& mesh, const MeshAttributes& attributes);
+
+// The NORMAL of every glTF vertex: its slot's corner_normals, or vertex_normals without one.
+std::vector<Vec3> gltf_vertex_normals(const Mesh& mesh, const MeshAttributes& attributes,
+                                      const GltfVertices& vertices);
+
 // The name of the node extras key above.
 inline constexpr const char* kFaceSizesKey = "primo_face_sizes";
 // A node extras key of files written with attributes: its vertices are copies per corner,
