@@ -85,36 +85,39 @@ def as_set(corners, digits=6):
     return {tuple(np.round(p, digits)) + tuple(np.round(uv, digits)) for p, uv in corners}
 
 
-def posed_cube(path):
-    mesh = primo.load_mesh(path)
-    turn = np.array([[0.0, -1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]])  # 90 degrees about z
-    return mesh, mesh.with_vertices(mesh.vertices @ turn.T + [2.0, 0.0, 0.0]), turn
+def pose(points):
+    """A quarter turn about z and a step along x."""
+    turn = np.array([[0.0, -1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]])
+    return np.asarray(points) @ turn.T + [2.0, 0.0, 0.0]
+
+
+def saved_posed_cube(folder, name):
+    """The textured cube read, posed and saved as `name`: (source, written file, posed mesh)."""
+    source = textured_cube(folder)
+    posed = primo.load_mesh(source).with_vertices(pose(primo.load_mesh(source).vertices))
+    out = str(folder / name)
+    primo.save_mesh(posed, out)
+    return source, out, posed
 
 
 def test_a_posed_textured_obj_saved_as_obj_keeps_its_uvs_and_materials(tmp_path):
-    source = textured_cube(tmp_path)
-    _, posed, turn = posed_cube(source)
-    out = str(tmp_path / "posed.obj")
-    primo.save_mesh(posed, out)
+    source, out, _ = saved_posed_cube(tmp_path, "posed.obj")
     corners, materials = obj_corners(out)
     before, source_materials = obj_corners(source)
     assert materials == source_materials == ["red", "blue", "red"]
     assert len(corners) == len(before) == 24
     for (p, uv), (p0, uv0) in zip(corners, before):
         assert np.allclose(uv, uv0, atol=1e-6)
-        assert np.allclose(p, np.array(p0) @ turn.T + [2.0, 0.0, 0.0], atol=1e-12)
+        assert np.allclose(p, pose(p0), atol=1e-12)
     assert "mtllib cube.mtl" in open(out).read()
 
 
 def test_a_posed_textured_obj_saved_as_glb_keeps_uvs_per_corner_and_materials(tmp_path):
-    source = textured_cube(tmp_path)
-    _, posed, turn = posed_cube(source)
-    out = str(tmp_path / "posed.glb")
-    primo.save_mesh(posed, out)
+    source, out, posed = saved_posed_cube(tmp_path, "posed.glb")
     corners, materials = glb_corners(out)
     assert materials == ["red", "blue"]
     before, _ = obj_corners(source)
-    expected = [((np.array(p) @ turn.T + [2.0, 0.0, 0.0]).tolist(), uv) for p, uv in before]
+    expected = [(pose(p).tolist(), uv) for p, uv in before]
     # Quads become two triangles: the corners are the same (position, uv) pairs, each to 1e-6.
     assert len(corners) == 36
     assert as_set(corners) == as_set(expected)
@@ -127,8 +130,7 @@ def test_a_posed_textured_obj_saved_as_glb_keeps_uvs_per_corner_and_materials(tm
 
 
 def test_meshes_made_from_arrays_are_saved_without_attributes(tmp_path):
-    source = textured_cube(tmp_path)
-    read, _, _ = posed_cube(source)
+    read = primo.load_mesh(textured_cube(tmp_path))
     plain = primo.Mesh(read.vertices, read.faces)
     out = str(tmp_path / "plain.glb")
     primo.save_mesh(plain, out)
@@ -141,7 +143,7 @@ def test_meshes_made_from_arrays_are_saved_without_attributes(tmp_path):
 def test_a_missing_texture_is_an_error_naming_it_when_a_glb_must_embed_it(tmp_path):
     source = textured_cube(tmp_path)
     os.remove(tmp_path / "red.png")
-    _, posed, _ = posed_cube(source)
+    posed = primo.load_mesh(source).with_vertices(pose(primo.load_mesh(source).vertices))
     with pytest.raises(primo.Error, match="red.png"):
         primo.save_mesh(posed, str(tmp_path / "posed.glb"))
     assert not (tmp_path / "posed.glb").exists()
