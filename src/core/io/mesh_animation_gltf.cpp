@@ -62,6 +62,9 @@ std::uint64_t mesh_animation_size_bound(const Mesh& rest, std::uint64_t frames,
     vertices = detail::gltf_vertices(rest, attributes).mesh_vertex.size();
     extra += vertices * (8 * attributes.texcoords.size() + 16 * attributes.colors.size());
     extra += 1024 * (attributes.materials.size() + 1);  // a node, mesh and material each
+    // JOINTS_0 and WEIGHTS_0 a vertex; a node (name, matrix) and an inverse bind matrix a joint.
+    if (!attributes.skin.empty()) extra += 24 * vertices + 1024;
+    for (const SkinJoint& joint : attributes.skin.joints) extra += 64 + 512 + 6 * joint.name.size();
     for (const MeshImage& image : attributes.images) {
       std::error_code error;
       const auto file = std::filesystem::file_size(std::filesystem::path(image.folder) / image.uri, error);

@@ -290,6 +290,61 @@ Json material_json(const MeshMaterial& m) {
   return out;
 }
 
+constexpr int kUnsignedShort = 5123;
+
+// JOINTS_0 and WEIGHTS_0 of every glTF vertex, from its mesh vertex. Float weights are made to
+// sum to 1 as closely as float32 can: the largest takes what the others leave.
+struct SkinVertices {
+  std::vector<uint16_t> joints;
+  std::vector<float> weights;
+};
+
+SkinVertices skin_vertices(const MeshSkin& skin, const GltfVertices& vertices,
+                           const std::string& path) {
+  if (skin.joints.size() > size_t(std::numeric_limits<uint16_t>::max()) + 1)
+    throw Error(path + ": cannot save: the skin has " + std::to_string(skin.joints.size()) +
+                " joints, more than glTF's 16-bit joint indices reach");
+  SkinVertices out;
+  out.joints.reserve(4 * vertices.mesh_vertex.size());
+  out.weights.reserve(4 * vertices.mesh_vertex.size());
+  for (const int v : vertices.mesh_vertex) {
+    const auto& joints = skin.vertex_joints[size_t(v)];
+    const auto& weights = skin.vertex_weights[size_t(v)];
+    double others = 0;
+    for (int k = 1; k < kSkinInfluences; ++k) others += double(float(weights[size_t(k)]));
+    for (int k = 0; k < kSkinInfluences; ++k) {
+      out.joints.push_back(uint16_t(joints[size_t(k)]));
+      out.weights.push_back(k == 0 ? float(1.0 - others) : float(weights[size_t(k)]));
+    }
+  }
+  return out;
+}
+
+// The skin's joints as nodes after the mesh nodes (the roots in the scene, each at its rest
+// transform), and the skin the mesh nodes name, with its inverse bind matrices. The mesh nodes
+// have no transform, which viewers ignore for a skinned mesh anyway.
+void add_skin(Json& json, BufferWriter& out, const MeshSkin& skin) {
+  const size_t first = json["nodes"].size();
+  std::vector<float> matrices;
+  Json joints = Json::array();
+  for (size_t j = 0; j < skin.joints.size(); ++j) {
+    const SkinJoint& joint = skin.joints[j];
+    Json node = {{"name", joint.name}, {"matrix", joint.rest}};
+    json["nodes"].push_back(node);
+    joints.push_back(first + j);
+    if (joint.parent < 0)
+      json["scenes"][0]["nodes"].push_back(first + j);
+    else {
+      Json& parent = json["nodes"][first + size_t(joint.parent)];
+      if (!parent.contains("children")) parent["children"] = Json::array();
+      parent["children"].push_back(first + j);
+    }
+    for (double x : joint.inverse_bind) matrices.push_back(float(x));
+  }
+  const size_t inverse_binds = out.accessor(matrices, kFloat, "MAT4", 16, 0);
+  json["skins"] = Json::array({{{"inverseBindMatrices", inverse_binds}, {"joints", joints}}});
+}
+
 }  // namespace
 
 std::string gltf_bytes(const Mesh& mesh, bool binary, const std::string& name,
@@ -299,7 +354,7 @@ std::string gltf_bytes(const Mesh& mesh, bool binary, const std::string& name,
 
 bool has_gltf_attributes(const MeshAttributes& attributes) {
   return !attributes.texcoords.empty() || !attributes.colors.empty() || attributes.n_normals > 0 ||
-         !attributes.face_material.empty();
+         !attributes.face_material.empty() || !attributes.skin.empty();
 }
 
 GltfVertices gltf_vertices(const Mesh& mesh, const MeshAttributes& attributes) {
@@ -393,6 +448,11 @@ GltfDocument gltf_document(const Mesh& mesh, const MeshAttributes& attributes, b
   for (size_t s = 0; s < colors.size(); ++s)
     vertex_attributes["COLOR_" + std::to_string(s)] =
         out.accessor(colors[s], kFloat, "VEC4", 4, kArrayBuffer);
+  if (!attributes.skin.empty()) {
+    const SkinVertices skin = skin_vertices(attributes.skin, vertices, path);
+    vertex_attributes["JOINTS_0"] = out.accessor(skin.joints, kUnsignedShort, "VEC4", 4, kArrayBuffer);
+    vertex_attributes["WEIGHTS_0"] = out.accessor(skin.weights, kFloat, "VEC4", 4, kArrayBuffer);
+  }
 
   // 2. One primitive per material, in the order the faces first use them; fans as above. Each
   // is a mesh of its own node, whose extras give its face sizes and say that its vertex copies
@@ -430,8 +490,10 @@ GltfDocument gltf_document(const Mesh& mesh, const MeshAttributes& attributes, b
                              {"mesh", json["meshes"].size()},
                              {"extras", {{kFaceSizesKey, face_size_runs(sizes[material])},
                                          {kVertexCopiesKey, "merge by position"}}}});
+    if (!attributes.skin.empty()) json["nodes"].back()["skin"] = 0;
     json["meshes"].push_back({{"name", part}, {"primitives", Json::array({primitive})}});
   }
+  if (!attributes.skin.empty()) add_skin(json, out, attributes.skin);
 
   // 3. Materials, a texture per image, and the images.
   if (!attributes.materials.empty()) {
