@@ -177,6 +177,40 @@ TEST(EditorSessions, ExportsTheAnimationTheReplayCommandWrites) {
   EXPECT_NE(e.messages().back().text.find("anim.obj: an animation is written as glTF"), std::string::npos);
 }
 
+TEST(EditorSessions, ExportedAnimationKeepsTheMeshsUvsAsTheReplayCommandDoes) {
+  const std::string dir = primo::test::temp_dir();
+  const primo::test::RecordedSession r = primo::test::record_bar_session(dir + "/bar.obj");
+  // The bar with a UV per face corner.
+  MeshAttributes uvs;
+  uvs.texcoords.emplace_back();
+  const int corners = first_corners(r.mesh).back();
+  for (int c = 0; c < corners; ++c) {
+    uvs.texcoords[0].values.push_back({double(c % 7) / 7, double(c % 5) / 5});
+    uvs.texcoords[0].corner.push_back(c);
+  }
+  save_mesh(r.mesh, uvs, dir + "/bar.obj");
+  save_session(r.session, dir + "/s.session.json");
+  Editor e;
+  e.adopt(load_document(dir + "/bar.obj"));
+  e.update(0.016);
+  e.sessions.open_playback(e, dir + "/s.session.json");
+  ASSERT_TRUE(e.sessions.has_session());
+  e.sessions.export_animation(e, dir + "/editor.glb");
+  for (int i = 0; i < 6000 && e.sessions.exporting(); ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    e.update(0.016);
+  }
+  ASSERT_FALSE(e.sessions.exporting());
+  std::filesystem::create_directories(dir + "/command");
+  const primo::test::CommandResult run = primo::test::run_primo(
+      "replay " + dir + "/s.session.json -o " + dir + "/final.obj --animation " + dir +
+      "/command/editor.glb");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const std::string exported = primo::test::read_text(dir + "/editor.glb");
+  EXPECT_NE(exported.find("TEXCOORD_0"), std::string::npos);
+  EXPECT_TRUE(exported == primo::test::read_text(dir + "/command/editor.glb"));
+}
+
 TEST(EditorSessions, PlaybackRedrawsHandleColoursWhenTheHandlesChange) {
   const std::string dir = primo::test::temp_dir();
   Editor e;
