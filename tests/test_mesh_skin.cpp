@@ -268,6 +268,9 @@ TEST(MeshSkinCheck, BadSkinDataIsRefusedWithTheFileNamed) {
   skin = one_joint_skin(mesh);
   skin.vertex_weights.pop_back();
   expect_refused(skin, "the skin weighs");
+  skin = one_joint_skin(mesh);
+  skin.joints[0].inverse_bind[0] = 1e300;
+  expect_refused(skin, "the inverse bind matrix of joint 0 has a value that float32 cannot hold");
   primo::MeshAttributes fine;
   fine.skin = one_joint_skin(mesh);
   EXPECT_NO_THROW(primo::save_mesh(mesh, fine, output));

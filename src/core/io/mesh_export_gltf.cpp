@@ -323,7 +323,7 @@ SkinVertices skin_vertices(const MeshSkin& skin, const GltfVertices& vertices,
 // The skin's joints as nodes after the mesh nodes (the roots in the scene, each at its rest
 // transform), and the skin the mesh nodes name, with its inverse bind matrices. The mesh nodes
 // have no transform, which viewers ignore for a skinned mesh anyway.
-void add_skin(Json& json, BufferWriter& out, const MeshSkin& skin) {
+void add_skin(Json& json, BufferWriter& out, const MeshSkin& skin, const std::string& path) {
   const size_t first = json["nodes"].size();
   std::vector<float> matrices;
   Json joints = Json::array();
@@ -339,7 +339,12 @@ void add_skin(Json& json, BufferWriter& out, const MeshSkin& skin) {
       if (!parent.contains("children")) parent["children"] = Json::array();
       parent["children"].push_back(first + j);
     }
-    for (double x : joint.inverse_bind) matrices.push_back(float(x));
+    for (double x : joint.inverse_bind) {
+      if (!std::isfinite(float(x)))
+        throw Error(path + ": cannot save: the inverse bind matrix of joint " + std::to_string(j) +
+                    " has a value that float32 cannot hold (" + std::to_string(x) + ")");
+      matrices.push_back(float(x));
+    }
   }
   const size_t inverse_binds = out.accessor(matrices, kFloat, "MAT4", 16, 0);
   json["skins"] = Json::array({{{"inverseBindMatrices", inverse_binds}, {"joints", joints}}});
@@ -493,7 +498,7 @@ GltfDocument gltf_document(const Mesh& mesh, const MeshAttributes& attributes, b
     if (!attributes.skin.empty()) json["nodes"].back()["skin"] = 0;
     json["meshes"].push_back({{"name", part}, {"primitives", Json::array({primitive})}});
   }
-  if (!attributes.skin.empty()) add_skin(json, out, attributes.skin);
+  if (!attributes.skin.empty()) add_skin(json, out, attributes.skin, path);
 
   // 3. Materials, a texture per image, and the images.
   if (!attributes.materials.empty()) {

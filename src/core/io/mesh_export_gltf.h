@@ -61,8 +61,11 @@ void append_raw(std::string& out, const std::vector<T>& values) {
 // RGBA), NORMAL (corner_normals, or the vertex normals above when the file had none) and POSITION.
 // Materials are written with their factors and textures; images are embedded in a GLB (a file the
 // source refers to is read now), and in a .gltf embedded as a data URI when the source embedded
-// them, else referred to relative to `path`'s folder. Throws Error "<path>: ..." as above, and when
-// an image file a GLB must embed cannot be read.
+// them, else referred to relative to `path`'s folder. A skin adds JOINTS_0 (unsigned short) and
+// WEIGHTS_0 (float) to the primitives, its joints as nodes after the mesh nodes and a skin the
+// mesh nodes name (docs/mesh-io.md, "Attributes"). Throws Error "<path>: ..." as above, when an
+// image file a GLB must embed cannot be read, and for a skin beyond glTF's 16-bit joint indices
+// or an inverse bind matrix beyond float32.
 std::string gltf_bytes(const Mesh& mesh, const MeshAttributes& attributes, bool binary,
                        const std::string& name, const std::string& path);
 
@@ -71,7 +74,8 @@ std::string gltf_bytes(const Mesh& mesh, const MeshAttributes& attributes, bool 
 GltfDocument gltf_document(const Mesh& mesh, const MeshAttributes& attributes, bool binary,
                            const std::string& name, const std::string& path);
 
-// Whether the attributes change the glTF written (UVs, colours, normal slots or materials).
+// Whether the attributes change the glTF written (UVs, colours, normal slots, materials or a
+// skin).
 bool has_gltf_attributes(const MeshAttributes& attributes);
 
 // The vertices of the file gltf_document(mesh, attributes, ...) writes: without attributes the
