@@ -173,11 +173,27 @@ TEST(MeshSkinExport, PosedFbxCharacterAsGlbKeepsBonesHierarchyWeightsAndPosedPos
   EXPECT_EQ(seen.size(), pose.n_vertices());
   EXPECT_GT(checked, 0u);
 
-  // PriMo reads its own file back with the same skin.
+  // PriMo reads its own file back with the same skin (float32 matrices and weights).
   const primo::LoadedMesh again = primo::load_mesh_noted(output);
-  ASSERT_EQ(again.attributes.skin.joints.size(), rest.attributes.skin.joints.size());
-  for (size_t j = 0; j < again.attributes.skin.joints.size(); ++j)
-    EXPECT_EQ(again.attributes.skin.joints[j].name, rest.attributes.skin.joints[j].name);
+  const primo::MeshSkin& a = rest.attributes.skin;
+  const primo::MeshSkin& b = again.attributes.skin;
+  ASSERT_EQ(b.joints.size(), a.joints.size());
+  for (size_t j = 0; j < b.joints.size(); ++j) {
+    EXPECT_EQ(b.joints[j].name, a.joints[j].name);
+    EXPECT_EQ(b.joints[j].parent, a.joints[j].parent);
+    for (size_t k = 0; k < 16; ++k) {
+      EXPECT_NEAR(b.joints[j].rest[k], a.joints[j].rest[k], 1e-6 * (1 + std::abs(a.joints[j].rest[k])));
+      EXPECT_NEAR(b.joints[j].inverse_bind[k], a.joints[j].inverse_bind[k],
+                  1e-6 * (1 + std::abs(a.joints[j].inverse_bind[k])));
+    }
+  }
+  ASSERT_EQ(again.mesh.n_vertices(), pose.n_vertices());
+  for (auto v : again.mesh.vertices()) {
+    const size_t original = vertex_at.at(float_position(again.mesh.point(v)));
+    const NamedWeights expected = named_weights(a, original), got = named_weights(b, size_t(v.idx()));
+    ASSERT_EQ(got.size(), expected.size()) << "vertex " << v.idx();
+    for (const auto& [bone, w] : expected) EXPECT_NEAR(got.at(bone), w, 1e-6) << bone;
+  }
 }
 
 TEST(MeshSkinExport, SkinnedGltfStatesItsSkinAsTheSpecificationAsks) {
@@ -303,6 +319,99 @@ void expect_read_refused(const std::string& path, const std::string& why) {
     const std::string message = e.what();
     EXPECT_EQ(message.rfind(path + ": cannot read", 0), 0u) << message;
     EXPECT_NE(message.find(why), std::string::npos) << message;
+  }
+}
+
+// A GLB of `json` with `bin` as its binary chunk.
+std::string glb_of(const nlohmann::json& json, std::string bin) {
+  std::string text = json.dump();
+  text.append((4 - text.size() % 4) % 4, ' ');
+  bin.append((4 - bin.size() % 4) % 4, '\0');
+  std::string out;
+  const auto u32 = [&](uint32_t value) { out.append(reinterpret_cast<const char*>(&value), 4); };
+  u32(0x46546C67);
+  u32(2);
+  u32(uint32_t(12 + 8 + text.size() + 8 + bin.size()));
+  u32(uint32_t(text.size()));
+  u32(0x4E4F534A);
+  out += text;
+  u32(uint32_t(bin.size()));
+  u32(0x004E4942);
+  return out + bin;
+}
+
+template <typename T>
+std::string bytes_of(const std::vector<T>& values) {
+  return std::string(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));
+}
+
+// Two triangles of a square whose corner at the origin is two vertices (a seam) with different
+// weights, every vertex weighed by 5 joints through JOINTS_0/WEIGHTS_0 and JOINTS_1/WEIGHTS_1.
+std::string five_joint_square() {
+  const std::vector<float> positions = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, 0, 0, 0};
+  const std::vector<uint16_t> indices = {0, 1, 2, 4, 2, 3};
+  std::vector<uint16_t> joints0, joints1;
+  std::vector<float> weights0, weights1;
+  for (int v = 0; v < 5; ++v) {
+    joints0.insert(joints0.end(), {0, 1, 2, 3});
+    weights0.insert(weights0.end(), {0.3f, 0.2f, 0.2f, 0.1f});
+    joints1.insert(joints1.end(), {4, 0, 0, 0});
+    weights1.insert(weights1.end(), {v == 4 ? 0.6f : 0.2f, 0, 0, 0});
+  }
+  std::vector<float> matrices;
+  for (int j = 0; j < 5; ++j) matrices.insert(matrices.end(), {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1});
+  nlohmann::json json = {{"asset", {{"version", "2.0"}}}, {"scene", 0},
+                         {"scenes", {{{"nodes", {0, 1}}}}}};
+  json["nodes"] = {{{"name", "square"}, {"mesh", 0}, {"skin", 0}},
+                   {{"name", "j0"}, {"children", {2, 3, 4, 5}}},
+                   {{"name", "j1"}}, {{"name", "j2"}}, {{"name", "j3"}}, {{"name", "j4"}}};
+  json["skins"] = {{{"joints", {1, 2, 3, 4, 5}}, {"inverseBindMatrices", 6}}};
+  json["meshes"] = nlohmann::json::parse(R"([{"primitives": [{"attributes": {"POSITION": 0,
+      "JOINTS_0": 1, "WEIGHTS_0": 2, "JOINTS_1": 3, "WEIGHTS_1": 4}, "indices": 5}]}])");
+  std::string bin;
+  json["bufferViews"] = nlohmann::json::array();
+  json["accessors"] = nlohmann::json::array();
+  const auto add = [&](const std::string& bytes, int component, const char* type, size_t count) {
+    json["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", bin.size()}, {"byteLength", bytes.size()}});
+    json["accessors"].push_back({{"bufferView", json["bufferViews"].size() - 1},
+                                 {"componentType", component}, {"type", type}, {"count", count}});
+    bin += bytes;
+  };
+  add(bytes_of(positions), 5126, "VEC3", 5);
+  json["accessors"][0]["min"] = {0, 0, 0};
+  json["accessors"][0]["max"] = {1, 1, 0};
+  add(bytes_of(joints0), 5123, "VEC4", 5);
+  add(bytes_of(weights0), 5126, "VEC4", 5);
+  add(bytes_of(joints1), 5123, "VEC4", 5);
+  add(bytes_of(weights1), 5126, "VEC4", 5);
+  add(bytes_of(indices), 5123, "SCALAR", 6);
+  add(bytes_of(matrices), 5126, "MAT4", 5);
+  json["buffers"] = {{{"byteLength", bin.size()}}};
+  return glb_of(json, bin);
+}
+
+TEST(MeshSkinImport, MoreThanFourWeightsKeepTheLargestAndCopiesKeepTheFirstsSaidInTheNote) {
+  const std::string path = temp_dir() + "/square.glb";
+  write_text(path, five_joint_square());
+  const primo::LoadedMesh square = primo::load_mesh_noted(path);
+  ASSERT_EQ(square.mesh.n_vertices(), 4u);
+  const primo::MeshSkin& skin = square.attributes.skin;
+  ASSERT_EQ(skin.joints.size(), 5u);
+  EXPECT_NE(square.note.find("4 vertices had more than 4 bone weights: the 4 largest kept, "
+                             "renormalised to sum 1"),
+            std::string::npos)
+      << square.note;
+  EXPECT_NE(square.note.find("1 merged vertex copy had other bone weights than the first copy: "
+                             "the first copy's kept"),
+            std::string::npos)
+      << square.note;
+  // 0.3, then the three weights of 0.2 (joint 3's 0.1 dropped), over their sum 0.9.
+  for (size_t v = 0; v < 4; ++v) {
+    const NamedWeights w = named_weights(skin, v);
+    EXPECT_EQ(w.size(), 4u);
+    EXPECT_NEAR(w.at("j0"), 0.3 / 0.9, 1e-6);
+    EXPECT_NEAR(w.at("j4"), 0.2 / 0.9, 1e-6);
+    EXPECT_EQ(w.count("j3"), 0u);
   }
 }
 
