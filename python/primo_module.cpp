@@ -20,6 +20,7 @@
 #include "primo/solve/deformer.h"
 #include "primo/util/error.h"
 #include "primo/mesh/geometry.h"
+#include "primo/io/mesh_import.h"
 #include "primo/io/mesh_io.h"
 #include "primo/io/output_files.h"
 #include "primo/util/parallel.h"
@@ -33,6 +34,27 @@ namespace py = pybind11;
 using namespace primo;
 
 namespace {
+
+// A mesh read from a file keeps the attributes it was read with (UVs, normals, colours,
+// materials), so that save_mesh writes a posed copy with them as `primo deform` does. Python
+// sees it as a primo.Mesh: pybind11 hands out the registered base class.
+struct MeshWithAttributes : Mesh {
+  MeshWithAttributes(Mesh mesh, MeshAttributes attributes)
+      : Mesh(std::move(mesh)), attributes(std::move(attributes)) {}
+  MeshAttributes attributes;
+};
+
+// The attributes `mesh` was read with, null for a mesh made from arrays.
+const MeshAttributes* attributes_of(const Mesh& mesh) {
+  const auto* read = dynamic_cast<const MeshWithAttributes*>(&mesh);
+  return read ? &read->attributes : nullptr;
+}
+
+// A file's mesh with its attributes.
+std::shared_ptr<Mesh> mesh_with_attributes(const std::string& path) {
+  LoadedMesh loaded = load_mesh_noted(path);
+  return std::make_shared<MeshWithAttributes>(std::move(loaded.mesh), std::move(loaded.attributes));
+}
 
 using Points = py::array_t<double, py::array::c_style | py::array::forcecast>;
 using Indices = py::array_t<long long, py::array::c_style | py::array::forcecast>;
@@ -366,21 +388,34 @@ PYBIND11_MODULE(primo, m) {
              if (points.size() != mesh.n_vertices())
                throw py::value_error("vertices: expected " + std::to_string(mesh.n_vertices()) + " rows, got " +
                                      std::to_string(points.size()));
-             auto out = std::make_shared<Mesh>(mesh);
+             std::shared_ptr<Mesh> out;
+             if (const MeshAttributes* attributes = attributes_of(mesh))
+               out = std::make_shared<MeshWithAttributes>(mesh, *attributes);
+             else
+               out = std::make_shared<Mesh>(mesh);
              for (auto v : out->vertices()) out->set_point(v, points[size_t(v.idx())]);
              return out;
            },
-           py::arg("vertices"), "The same faces at new vertex positions (a deformed copy to save).")
+           py::arg("vertices"),
+           "The same faces, and the attributes the mesh was read with, at new vertex positions "
+           "(a deformed copy to save).")
       .def("__repr__", [](py::handle mesh_object) {
         const Mesh& mesh = initialized<Mesh>(mesh_object, "Mesh");
         return "Mesh(" + std::to_string(mesh.n_vertices()) + " vertices, " + std::to_string(mesh.n_faces()) +
                " faces)";
       });
-  m.def("load_mesh", [](const std::string& path) { return std::make_shared<Mesh>(load_mesh(path)); },
-        py::arg("path"), "Reads OBJ, OFF, PLY, STL or OM.");
+  m.def("load_mesh",
+        &mesh_with_attributes, py::arg("path"),
+        "Reads OBJ, OFF, PLY, STL, OM, glTF, FBX, COLLADA or 3MF, with its UVs, normals, colours and "
+        "materials.");
   m.def("save_mesh", [](py::handle mesh_object, const std::string& path) {
-        const Mesh& mesh = initialized<Mesh>(mesh_object, "Mesh"); save_mesh(mesh, path); },
-        py::arg("mesh"), py::arg("path"), "Writes by extension, atomically.");
+        const Mesh& mesh = initialized<Mesh>(mesh_object, "Mesh");
+        if (const MeshAttributes* attributes = attributes_of(mesh))
+          save_mesh(mesh, *attributes, path);
+        else
+          save_mesh(mesh, path); },
+        py::arg("mesh"), py::arg("path"),
+        "Writes by extension, atomically, with the attributes the mesh was read with.");
 
   // --- Constraints -------------------------------------------------------------------------
   py::class_<Handle>(m, "Handle", "A rigid group of faces moved to a target.")
@@ -536,7 +571,7 @@ PYBIND11_MODULE(primo, m) {
       "load_scenario",
       [](const std::string& path) {
         const Scenario scenario = load_scenario(path);
-        auto mesh = std::make_shared<Mesh>(load_mesh(scenario.mesh_path));
+        const std::shared_ptr<Mesh> mesh = mesh_with_attributes(scenario.mesh_path);
         const ResolvedScenario resolved = resolve_scenario(scenario, *mesh);
         // What the file says, every key written out, as a plain dict; and what its selections
         // and regions come to on the mesh, so that a caller never re-implements either.

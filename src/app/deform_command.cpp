@@ -94,6 +94,9 @@ int run_deform(const DeformArguments& args) {
     out.stage(args.stats, stats.dump(2) + "\n");
   }
   out.commit();
+  // A format that cannot hold the skin says so; the mesh itself is written.
+  if (const std::string lost = save_note(loaded.attributes, args.output); !lost.empty())
+    std::fprintf(stderr, "primo deform: note: %s\n", lost.c_str());
   if (!report.converged)
     std::fprintf(stderr,
                  "primo deform: warning: %s: not converged after %d iterations (energy %.6g); "

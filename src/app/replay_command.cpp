@@ -127,13 +127,17 @@ int run_replay(const ReplayArguments& args) {
   const auto load = [](const std::string& path) {
     LoadedMesh loaded = load_mesh_noted(path);
     if (!loaded.note.empty()) std::fprintf(stderr, "primo replay: note: %s\n", loaded.note.c_str());
-    return std::move(loaded.mesh);
+    return loaded;
   };
-  Mesh mesh = load(session.mesh_path);
+  // The replayed mesh's UVs, normals, colours and materials go into every file written.
+  LoadedMesh loaded = load(session.mesh_path);
+  Mesh mesh = std::move(loaded.mesh);
+  MeshAttributes attributes = std::move(loaded.attributes);
   if (!args.mesh.empty()) {  // a finer version of the recorded mesh
-    Mesh fine = load(args.mesh);
-    session_on_mesh = map_session_to_mesh(session, mesh, fine);
-    mesh = std::move(fine);
+    LoadedMesh fine = load(args.mesh);
+    session_on_mesh = map_session_to_mesh(session, mesh, fine.mesh);
+    mesh = std::move(fine.mesh);
+    attributes = std::move(fine.attributes);
   } else {
     session_on_mesh = session;
   }
@@ -141,7 +145,8 @@ int run_replay(const ReplayArguments& args) {
   // Its size is checked here, before anything is solved.
   std::unique_ptr<SessionAnimation> animation;
   if (!args.animation.empty())
-    animation = std::make_unique<SessionAnimation>(session_on_mesh, mesh, args.every, args.animation);
+    animation = std::make_unique<SessionAnimation>(session_on_mesh, mesh, args.every, args.animation,
+                                                   attributes);
 
   // Frames are written into a hidden folder inside DIR and moved into place at the end; a
   // killed replay leaves that folder, which the next replay into DIR removes.
@@ -160,7 +165,7 @@ int run_replay(const ReplayArguments& args) {
       if (args.frames.empty()) return;
       if (written.empty()) fs::create_directories(temp);
       const std::string name = session_frame_name(frame) + "." + args.frame_format;
-      save_mesh(d.deformed_mesh(mesh), (temp / name).string());
+      save_mesh(d.deformed_mesh(mesh), attributes, (temp / name).string());
       written.push_back(name);
     };
   }
@@ -185,7 +190,7 @@ int run_replay(const ReplayArguments& args) {
     }
     // The final mesh, the animation and the statistics together, or none; then the frames.
     StagedOutputs out;
-    out.stage_mesh(args.output, final_mesh);
+    out.stage_mesh(args.output, final_mesh, attributes);
     if (animation) out.stage(args.animation, animation->file_bytes());
     if (!args.stats.empty())
       out.stage(args.stats, nlohmann::json{{"frames", result.frames},

@@ -48,12 +48,12 @@ double session_frame_time(const Session& session, int frame) {
 }
 
 SessionAnimation::SessionAnimation(const Session& session, const Mesh& mesh, int every,
-                                   std::string path)
-    : session_(session), path_(std::move(path)), animation_(mesh) {
+                                   std::string path, const MeshAttributes& attributes)
+    : session_(session), path_(std::move(path)), animation_(mesh, attributes) {
   check_animation_output_path(path_);
   if (every < 1) throw Error(path_ + ": the frame step must be at least 1");
   const std::uint64_t frames = std::uint64_t((std::max(session.frames(), 1) - 1) / every + 1);
-  const std::uint64_t bound = mesh_animation_size_bound(mesh, frames, path_);
+  const std::uint64_t bound = mesh_animation_size_bound(mesh, frames, path_, attributes);
   const std::string help = "; keep fewer frames with a larger --every (now " +
                            std::to_string(every) + ")";
   if (bound > kMaxAnimationFileBytes)
@@ -70,8 +70,8 @@ void SessionAnimation::add(int frame, const Deformer& deformer) {
 }
 
 void save_session_animation(const Session& session, const Mesh& mesh, int every,
-                            const std::string& path) {
-  SessionAnimation animation(session, mesh, every, path);
+                            const std::string& path, const MeshAttributes& attributes) {
+  SessionAnimation animation(session, mesh, every, path, attributes);
   ReplayOptions options;
   options.every = every;
   options.on_frame = [&](int frame, const Deformer& d) { animation.add(frame, d); };

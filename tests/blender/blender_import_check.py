@@ -14,17 +14,9 @@ import sys
 
 import bpy
 from mathutils import kdtree
-import numpy
 
-# Debian 12's Blender 3.4 glTF importer uses numpy.bool, which NumPy 1.24 removed (it was the
-# builtin bool): without it every import of a mesh with normals fails.
-if "bool" not in numpy.__dict__:
-    numpy.bool = bool
-
-
-def read_points(path):
-    with open(path) as f:
-        return [[float(x) for x in line.split()[1:4]] for line in f if line.startswith("v ")]
+sys.path.insert(0, os.path.dirname(__file__))
+from gltf_import_support import read_points  # noqa: E402
 
 
 def main():

@@ -1,34 +1,47 @@
 #pragma once
 // A vertex animation as one glTF 2.0 file (docs/mesh-io.md, "Vertex animations"): the rest
-// mesh as save_mesh writes it to glTF, every kept frame a morph target (its displacement from
-// the rest positions, and of the normals), and one animation of the mesh's weights that shows
-// frame i at its time: weight 1 on target i and 0 on the others, linear in between. The
-// weights are frames x frames floats, which bounds the frame count of a file in practice.
+// mesh as save_mesh writes it to glTF, with the attributes it was read with (UVs, colours,
+// materials: a mesh per material, sharing the vertices), every kept frame a morph target of
+// each of its meshes (its displacement from the rest positions, and of the normals), and one
+// animation of the meshes' weights that shows frame i at its time: weight 1 on target i and 0
+// on the others, linear in between. The weights are frames x frames floats, which bounds the
+// frame count of a file in practice.
 //
 // Frames are added one at a time and stored as the file will hold them (float32), so memory
 // follows the file's size, not frames x vertices x doubles.
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "primo/mesh/mesh.h"
+#include "primo/mesh/mesh_attributes.h"
 
 namespace primo {
+
+namespace detail {
+struct GltfVertices;
+}
 
 // The largest vertex animation file written (1 GiB); mesh_animation_size_bound above it is
 // refused before anything is solved or written.
 inline constexpr std::uint64_t kMaxAnimationFileBytes = std::uint64_t(1) << 30;
 
 // What a file at `path` (.glb, or .gltf with its buffer in base64) of `frames` targets on
-// `rest` can weigh at most: every target dense (positions and normals, 24 bytes a vertex), the
-// weights (frames x frames floats) and times, the JSON. Throws Error for another extension.
+// `rest` with `attributes` can weigh at most: every target dense (positions and normals, 24
+// bytes a glTF vertex: a vertex per face corner at most with attributes), the UVs and colours,
+// the images, the weights (frames x frames floats) and times, the JSON. Throws Error for
+// another extension.
 std::uint64_t mesh_animation_size_bound(const Mesh& rest, std::uint64_t frames,
-                                        const std::string& path);
+                                        const std::string& path,
+                                        const MeshAttributes& attributes = {});
 
 class MeshAnimation {
  public:
-  explicit MeshAnimation(const Mesh& rest);
+  // `attributes`: those `rest` was read with (LoadedMesh::attributes), written as save_mesh
+  // writes them; throws Error when they do not fit the mesh.
+  explicit MeshAnimation(const Mesh& rest, const MeshAttributes& attributes = {});
 
   // Adds a keyframe: `positions` (one per vertex of the rest mesh) shown at `seconds`, its
   // target named `name`. A target that moves fewer than a third of the vertices (as float32:
@@ -67,6 +80,9 @@ class MeshAnimation {
   int add_view(const std::string& bytes, bool vertex_data);
 
   Mesh rest_, posed_;
+  MeshAttributes attributes_;
+  // The file's vertices: the mesh's, or with attributes a copy per distinct corner.
+  std::shared_ptr<const detail::GltfVertices> vertices_;
   std::vector<float> rest_positions_, rest_normals_;
   std::vector<float> times_;
   double last_seconds_ = 0.0;

@@ -3,8 +3,8 @@
 // 3MF, read through Assimp (docs/mesh-io.md, "Scene formats"). A scene holds more than one
 // polygon mesh: every mesh of the scene's node tree is taken with its node's transform, the
 // vertices the exporter split for UVs or normals are merged by position (their UVs, normals and
-// colours kept per face corner, with the materials: LoadedMesh::attributes), and what reading
-// the file merged or left out (skins, animations, ...) is said in a one-line note.
+// colours kept per face corner, with the materials and the skin: LoadedMesh::attributes), and
+// what reading the file merged, kept or left out (animations, ...) is said in a one-line note.
 // load_mesh (mesh_io.h) reads these formats too and drops the note.
 
 #include <string>
@@ -21,7 +21,8 @@ struct LoadedMesh {
   // material library that cannot be read):
   // "<path>: 2 meshes joined into one: ...; merged 16 vertex copies ...; ignored: ...".
   std::string note;
-  // UVs, normals, colours and materials, for save_mesh(mesh, attributes, path) to write back.
+  // UVs, normals, colours, materials and skin, for save_mesh(mesh, attributes, path) to write
+  // back.
   MeshAttributes attributes = {};
 };
 

@@ -39,6 +39,11 @@ void save_mesh(const Mesh& mesh, const std::string& path);
 // (corner_normals). Throws Error naming the file, also when the attributes do not fit the mesh.
 void save_mesh(const Mesh& mesh, const MeshAttributes& attributes, const std::string& path);
 
+// What save_mesh(mesh, attributes, path) leaves out, for the user to read beside the result:
+// "<path>: the skin (9 joints) is not saved: OBJ holds none; save as .gltf or .glb to keep it"
+// for a skin saved to any format but glTF; "" when the file keeps everything it can be asked to.
+std::string save_note(const MeshAttributes& attributes, const std::string& path);
+
 // The bytes save_mesh writes for `path`'s format (what primo::StagedOutputs stages, so that a
 // command can write a mesh and its statistics together). Throws Error naming `path`.
 std::string mesh_file_bytes(const Mesh& mesh, const std::string& path);

@@ -28,8 +28,10 @@ class SessionAnimation {
   // Checks before anything is solved: `path` is a .glb or .gltf that can be written, and the
   // file the frames 0, every, 2 every, ... of the session would make stays within
   // kMaxAnimationFileBytes; else throws Error naming `path`, the size and
-  // what helps (a larger --every).
-  SessionAnimation(const Session& session, const Mesh& mesh, int every, std::string path);
+  // what helps (a larger --every). The file's mesh carries `attributes`, those `mesh` was read
+  // with (its UVs, colours and materials), as save_mesh writes them.
+  SessionAnimation(const Session& session, const Mesh& mesh, int every, std::string path,
+                   const MeshAttributes& attributes = {});
 
   // The replayed frame: its positions at session_frame_time, named frame_000010.
   void add(int frame, const Deformer& deformer);
@@ -47,6 +49,6 @@ class SessionAnimation {
 // every `every`-th frame as the animation at `path`, atomically. Throws Error as
 // SessionAnimation and replay_session do; nothing is written then.
 void save_session_animation(const Session& session, const Mesh& mesh, int every,
-                            const std::string& path);
+                            const std::string& path, const MeshAttributes& attributes = {});
 
 }  // namespace primo

@@ -27,11 +27,19 @@ std::vector<float> as_floats(const std::vector<Vec3>& points) {
   return out;
 }
 
-std::vector<float> rest_floats(const Mesh& mesh) {
+// The position of every glTF vertex: its mesh vertex's.
+std::vector<Vec3> gltf_positions(const std::vector<Vec3>& points, const detail::GltfVertices& vertices) {
+  std::vector<Vec3> out;
+  out.reserve(vertices.mesh_vertex.size());
+  for (const int v : vertices.mesh_vertex) out.push_back(points[size_t(v)]);
+  return out;
+}
+
+std::vector<Vec3> points_of(const Mesh& mesh) {
   std::vector<Vec3> points;
   points.reserve(mesh.n_vertices());
   for (auto v : mesh.vertices()) points.push_back(mesh.point(v));
-  return as_floats(points);
+  return points;
 }
 
 bool is_binary(const std::string& path) {
@@ -45,12 +53,25 @@ bool is_binary(const std::string& path) {
 }  // namespace
 
 std::uint64_t mesh_animation_size_bound(const Mesh& rest, std::uint64_t frames,
-                                        const std::string& path) {
+                                        const std::string& path, const MeshAttributes& attributes) {
   const bool binary = is_binary(path);
   std::uint64_t corners = 0;
   for (auto f : rest.faces()) corners += 3 * (f.valence() - 2);
-  const std::uint64_t vertices = rest.n_vertices();
-  const std::uint64_t mesh_bytes = 24 * vertices + 4 * corners + 4096;
+  std::uint64_t vertices = rest.n_vertices(), extra = 0;
+  if (detail::has_gltf_attributes(attributes)) {
+    vertices = detail::gltf_vertices(rest, attributes).mesh_vertex.size();
+    extra += vertices * (8 * attributes.texcoords.size() + 16 * attributes.colors.size());
+    extra += 1024 * (attributes.materials.size() + 1);  // a node, mesh and material each
+    // JOINTS_0 and WEIGHTS_0 a vertex; a node (name, matrix) and an inverse bind matrix a joint.
+    if (!attributes.skin.empty()) extra += 24 * vertices + 1024;
+    for (const SkinJoint& joint : attributes.skin.joints) extra += 64 + 512 + 6 * joint.name.size();
+    for (const MeshImage& image : attributes.images) {
+      std::error_code error;
+      const auto file = std::filesystem::file_size(std::filesystem::path(image.folder) / image.uri, error);
+      extra += image.bytes.size() + (error ? 0 : std::uint64_t(file)) + 512 + image.uri.size();
+    }
+  }
+  const std::uint64_t mesh_bytes = 24 * vertices + 4 * corners + 4096 + extra;
   const std::uint64_t weights = 4 * frames * frames;
   const std::uint64_t per_frame = 24 * vertices + 4 + 512;  // data, time, JSON
   const std::uint64_t bytes = mesh_bytes + weights + frames * per_frame;
@@ -62,9 +83,14 @@ void check_animation_output_path(const std::string& path) {
   check_output_path(path);
 }
 
-MeshAnimation::MeshAnimation(const Mesh& rest)
-    : rest_(rest), posed_(rest), rest_positions_(rest_floats(rest)),
-      rest_normals_(as_floats(detail::vertex_normals(rest))) {}
+MeshAnimation::MeshAnimation(const Mesh& rest, const MeshAttributes& attributes)
+    : rest_(rest), posed_(rest), attributes_(attributes) {
+  if (!attributes_.empty()) check_attributes(rest_, attributes_, "the animation's rest mesh");
+  auto vertices = std::make_shared<detail::GltfVertices>(detail::gltf_vertices(rest_, attributes_));
+  vertices_ = vertices;
+  rest_positions_ = as_floats(gltf_positions(points_of(rest_), *vertices_));
+  rest_normals_ = as_floats(detail::gltf_vertex_normals(rest_, attributes_, *vertices_));
+}
 
 int MeshAnimation::add_view(const std::string& bytes, bool vertex_data) {
   views_.push_back({buffer_.size(), bytes.size(), vertex_data});
@@ -132,15 +158,16 @@ void MeshAnimation::add_frame(double seconds, const std::vector<Vec3>& positions
     throw Error(where + ": time " + std::to_string(seconds) + " s goes back (the previous frame is at " +
                 std::to_string(last_seconds_) + " s)");
   const std::vector<float> frame = as_floats(positions);
-  std::vector<float> delta(frame.size());
-  for (size_t i = 0; i < frame.size(); ++i) {
+  for (size_t i = 0; i < frame.size(); ++i)
     if (!std::isfinite(frame[i]))
       throw Error(where + ": vertex " + std::to_string(i / 3) + " has a coordinate that float32 "
                   "cannot hold (" + std::to_string(positions[i / 3][int(i % 3)]) + ")");
-    delta[i] = frame[i] - rest_positions_[i];
-  }
+  const std::vector<float> copies = as_floats(gltf_positions(positions, *vertices_));
+  std::vector<float> delta(copies.size());
+  for (size_t i = 0; i < copies.size(); ++i) delta[i] = copies[i] - rest_positions_[i];
   for (auto v : posed_.vertices()) posed_.set_point(v, positions[size_t(v.idx())]);
-  const std::vector<float> normals = as_floats(detail::vertex_normals(posed_));
+  const std::vector<float> normals =
+      as_floats(detail::gltf_vertex_normals(posed_, attributes_, *vertices_));
   std::vector<float> normal_delta(normals.size());
   for (size_t i = 0; i < normals.size(); ++i) normal_delta[i] = normals[i] - rest_normals_[i];
 
@@ -159,11 +186,12 @@ void MeshAnimation::add_frame(double seconds, const std::vector<Vec3>& positions
 std::string MeshAnimation::file_bytes(const std::string& path) const {
   const bool binary = is_binary(path);
   if (times_.empty()) throw Error(path + ": cannot save an animation without frames");
-  detail::GltfDocument doc =
-      detail::gltf_document(rest_, std::filesystem::path(path).stem().string(), path);
+  detail::GltfDocument doc = detail::gltf_document(
+      rest_, attributes_, binary, std::filesystem::path(path).stem().string(), path);
   GltfJson& json = doc.json;
   const size_t first_view = json["bufferViews"].size(), first_accessor = json["accessors"].size();
-  const size_t offset = doc.buffer.size();  // 4-byte aligned: floats and uint32s only
+  doc.buffer.append((4 - doc.buffer.size() % 4) % 4, '\0');  // after images of any length
+  const size_t offset = doc.buffer.size();
   doc.buffer += buffer_;
   for (const View& v : views_) {
     GltfJson view = {{"buffer", 0}, {"byteOffset", offset + v.offset}, {"byteLength", v.length}};
@@ -215,17 +243,24 @@ std::string MeshAnimation::file_bytes(const std::string& path) const {
                                {"count", n * n},
                                {"type", "SCALAR"}});
 
-  GltfJson& primitive = json["meshes"][0]["primitives"][0];
+  // Every mesh (one per material) morphs by the same targets, its node's weights driven by the
+  // one sampler.
   GltfJson targets = GltfJson::array();
   for (const Target& t : targets_)
     targets.push_back({{"POSITION", first_accessor + size_t(t.position)},
                        {"NORMAL", first_accessor + size_t(t.normal)}});
-  primitive["targets"] = targets;
-  json["meshes"][0]["weights"] = std::vector<float>(n, 0.0f);
-  json["meshes"][0]["extras"] = {{"targetNames", names_}};  // what Blender names its shape keys
+  for (GltfJson& mesh : json["meshes"]) {
+    for (GltfJson& primitive : mesh["primitives"]) primitive["targets"] = targets;
+    mesh["weights"] = std::vector<float>(n, 0.0f);
+    mesh["extras"] = {{"targetNames", names_}};  // what Blender names its shape keys
+  }
+  GltfJson channels = GltfJson::array();
+  for (size_t node = 0; node < json["nodes"].size(); ++node)
+    if (json["nodes"][node].contains("mesh"))
+      channels.push_back({{"sampler", 0}, {"target", {{"node", node}, {"path", "weights"}}}});
   json["animations"] = GltfJson::array(
       {{{"name", "frames"},
-        {"channels", {{{"sampler", 0}, {"target", {{"node", 0}, {"path", "weights"}}}}}},
+        {"channels", channels},
         {"samplers", {{{"input", times_accessor},
                        {"output", json["accessors"].size() - 1},
                        {"interpolation", "LINEAR"}}}}}});

@@ -290,6 +290,66 @@ Json material_json(const MeshMaterial& m) {
   return out;
 }
 
+constexpr int kUnsignedShort = 5123;
+
+// JOINTS_0 and WEIGHTS_0 of every glTF vertex, from its mesh vertex. Float weights are made to
+// sum to 1 as closely as float32 can: the largest takes what the others leave.
+struct SkinVertices {
+  std::vector<uint16_t> joints;
+  std::vector<float> weights;
+};
+
+SkinVertices skin_vertices(const MeshSkin& skin, const GltfVertices& vertices,
+                           const std::string& path) {
+  if (skin.joints.size() > size_t(std::numeric_limits<uint16_t>::max()) + 1)
+    throw Error(path + ": cannot save: the skin has " + std::to_string(skin.joints.size()) +
+                " joints, more than glTF's 16-bit joint indices reach");
+  SkinVertices out;
+  out.joints.reserve(4 * vertices.mesh_vertex.size());
+  out.weights.reserve(4 * vertices.mesh_vertex.size());
+  for (const int v : vertices.mesh_vertex) {
+    const auto& joints = skin.vertex_joints[size_t(v)];
+    const auto& weights = skin.vertex_weights[size_t(v)];
+    double others = 0;
+    for (int k = 1; k < kSkinInfluences; ++k) others += double(float(weights[size_t(k)]));
+    for (int k = 0; k < kSkinInfluences; ++k) {
+      out.joints.push_back(uint16_t(joints[size_t(k)]));
+      out.weights.push_back(k == 0 ? float(1.0 - others) : float(weights[size_t(k)]));
+    }
+  }
+  return out;
+}
+
+// The skin's joints as nodes after the mesh nodes (the roots in the scene, each at its rest
+// transform), and the skin the mesh nodes name, with its inverse bind matrices. The mesh nodes
+// have no transform, which viewers ignore for a skinned mesh anyway.
+void add_skin(Json& json, BufferWriter& out, const MeshSkin& skin, const std::string& path) {
+  const size_t first = json["nodes"].size();
+  std::vector<float> matrices;
+  Json joints = Json::array();
+  for (size_t j = 0; j < skin.joints.size(); ++j) {
+    const SkinJoint& joint = skin.joints[j];
+    Json node = {{"name", joint.name}, {"matrix", joint.rest}};
+    json["nodes"].push_back(node);
+    joints.push_back(first + j);
+    if (joint.parent < 0)
+      json["scenes"][0]["nodes"].push_back(first + j);
+    else {
+      Json& parent = json["nodes"][first + size_t(joint.parent)];
+      if (!parent.contains("children")) parent["children"] = Json::array();
+      parent["children"].push_back(first + j);
+    }
+    for (double x : joint.inverse_bind) {
+      if (!std::isfinite(float(x)))
+        throw Error(path + ": cannot save: the inverse bind matrix of joint " + std::to_string(j) +
+                    " has a value that float32 cannot hold (" + std::to_string(x) + ")");
+      matrices.push_back(float(x));
+    }
+  }
+  const size_t inverse_binds = out.accessor(matrices, kFloat, "MAT4", 16, 0);
+  json["skins"] = Json::array({{{"inverseBindMatrices", inverse_binds}, {"joints", joints}}});
+}
+
 }  // namespace
 
 std::string gltf_bytes(const Mesh& mesh, bool binary, const std::string& name,
@@ -297,23 +357,20 @@ std::string gltf_bytes(const Mesh& mesh, bool binary, const std::string& name,
   return gltf_file_bytes(gltf_document(mesh, name, path), binary, path);
 }
 
-std::string gltf_bytes(const Mesh& mesh, const MeshAttributes& attributes, bool binary,
-                       const std::string& name, const std::string& path) {
-  const bool has_attributes = !attributes.texcoords.empty() || !attributes.colors.empty() ||
-                              attributes.n_normals > 0 || !attributes.face_material.empty();
-  if (!has_attributes) return gltf_bytes(mesh, binary, name, path);
-  if (mesh.n_faces() == 0) throw Error(path + ": cannot save: glTF cannot hold a mesh without faces");
+bool has_gltf_attributes(const MeshAttributes& attributes) {
+  return !attributes.texcoords.empty() || !attributes.colors.empty() || attributes.n_normals > 0 ||
+         !attributes.face_material.empty() || !attributes.skin.empty();
+}
 
-  // 1. One glTF vertex per distinct (vertex, UVs, colours, normal slot) of the corners.
-  const std::vector<Vec3> slot_normals = corner_normals(mesh, attributes);
-  const std::vector<Vec3> smooth_normals = vertex_normals(mesh);
+GltfVertices gltf_vertices(const Mesh& mesh, const MeshAttributes& attributes) {
+  GltfVertices out;
+  if (!has_gltf_attributes(attributes)) {
+    for (auto v : mesh.vertices()) out.mesh_vertex.push_back(v.idx()), out.normal_slot.push_back(-1);
+    for (auto f : mesh.faces())
+      for (auto v : f.vertices()) out.corner_vertex.push_back(uint32_t(v.idx()));
+    return out;
+  }
   std::map<std::vector<int>, uint32_t> vertex_of;
-  std::vector<uint32_t> corner_vertex;
-  std::vector<float> positions, normals;
-  std::vector<std::vector<float>> texcoords(attributes.texcoords.size()),
-      colors(attributes.colors.size());
-  std::vector<float> low(3, std::numeric_limits<float>::infinity());
-  std::vector<float> high(3, -std::numeric_limits<float>::infinity());
   std::vector<int> key;
   size_t c = 0;
   for (auto f : mesh.faces())
@@ -322,25 +379,64 @@ std::string gltf_bytes(const Mesh& mesh, const MeshAttributes& attributes, bool 
       key.assign({v.idx(), slot});
       for (const auto& set : attributes.texcoords) key.push_back(set.corner[c]);
       for (const auto& set : attributes.colors) key.push_back(set.corner[c]);
-      const auto [it, inserted] = vertex_of.emplace(key, uint32_t(positions.size() / 3));
-      corner_vertex.push_back(it->second);
+      const auto [it, inserted] = vertex_of.emplace(key, uint32_t(out.mesh_vertex.size()));
+      out.corner_vertex.push_back(it->second);
+      if (inserted) {
+        out.mesh_vertex.push_back(v.idx());
+        out.normal_slot.push_back(slot);
+        out.first_corner.push_back(c);
+      }
       ++c;
-      if (!inserted) continue;
-      append_float_position(mesh, v, positions, low, high, path);
-      const Vec3& n = slot >= 0 ? slot_normals[size_t(slot)] : smooth_normals[size_t(v.idx())];
-      for (int k = 0; k < 3; ++k) normals.push_back(float(n[k]));
-      for (size_t s = 0; s < texcoords.size(); ++s) {
-        const int t = key[2 + s];
-        const auto uv = t >= 0 ? attributes.texcoords[s].values[size_t(t)] : std::array<double, 2>{0, 1};
-        texcoords[s].push_back(float(uv[0]));
-        texcoords[s].push_back(float(1.0 - uv[1]));  // glTF's v runs down
-      }
-      for (size_t s = 0; s < colors.size(); ++s) {
-        const int i = key[2 + texcoords.size() + s];
-        const auto rgba = i >= 0 ? attributes.colors[s].values[size_t(i)] : std::array<double, 4>{1, 1, 1, 1};
-        for (double x : rgba) colors[s].push_back(float(x));
-      }
     }
+  return out;
+}
+
+std::vector<Vec3> gltf_vertex_normals(const Mesh& mesh, const MeshAttributes& attributes,
+                                      const GltfVertices& vertices) {
+  const std::vector<Vec3> slot_normals =
+      attributes.n_normals > 0 ? corner_normals(mesh, attributes) : std::vector<Vec3>{};
+  const std::vector<Vec3> smooth_normals = vertex_normals(mesh);
+  std::vector<Vec3> out;
+  out.reserve(vertices.mesh_vertex.size());
+  for (size_t i = 0; i < vertices.mesh_vertex.size(); ++i) {
+    const int slot = vertices.normal_slot[i];
+    out.push_back(slot >= 0 ? slot_normals[size_t(slot)]
+                            : smooth_normals[size_t(vertices.mesh_vertex[i])]);
+  }
+  return out;
+}
+
+GltfDocument gltf_document(const Mesh& mesh, const MeshAttributes& attributes, bool binary,
+                           const std::string& name, const std::string& path) {
+  if (!has_gltf_attributes(attributes)) return gltf_document(mesh, name, path);
+  if (mesh.n_faces() == 0) throw Error(path + ": cannot save: glTF cannot hold a mesh without faces");
+
+  // 1. One glTF vertex per distinct (vertex, UVs, colours, normal slot) of the corners.
+  const GltfVertices vertices = gltf_vertices(mesh, attributes);
+  const std::vector<uint32_t>& corner_vertex = vertices.corner_vertex;
+  std::vector<float> positions, normals;
+  std::vector<std::vector<float>> texcoords(attributes.texcoords.size()),
+      colors(attributes.colors.size());
+  std::vector<float> low(3, std::numeric_limits<float>::infinity());
+  std::vector<float> high(3, -std::numeric_limits<float>::infinity());
+  for (const Vec3& n : gltf_vertex_normals(mesh, attributes, vertices))
+    for (int k = 0; k < 3; ++k) normals.push_back(float(n[k]));
+  for (size_t i = 0; i < vertices.mesh_vertex.size(); ++i) {
+    const size_t c = vertices.first_corner[i];
+    append_float_position(mesh, mesh.vertex_handle(vertices.mesh_vertex[i]), positions, low, high,
+                          path);
+    for (size_t s = 0; s < texcoords.size(); ++s) {
+      const int t = attributes.texcoords[s].corner[c];
+      const auto uv = t >= 0 ? attributes.texcoords[s].values[size_t(t)] : std::array<double, 2>{0, 1};
+      texcoords[s].push_back(float(uv[0]));
+      texcoords[s].push_back(float(1.0 - uv[1]));  // glTF's v runs down
+    }
+    for (size_t s = 0; s < colors.size(); ++s) {
+      const int k = attributes.colors[s].corner[c];
+      const auto rgba = k >= 0 ? attributes.colors[s].values[size_t(k)] : std::array<double, 4>{1, 1, 1, 1};
+      for (double x : rgba) colors[s].push_back(float(x));
+    }
+  }
 
   Json json;
   json["asset"] = {{"version", "2.0"}, {"generator", "PriMo"}};
@@ -357,6 +453,11 @@ std::string gltf_bytes(const Mesh& mesh, const MeshAttributes& attributes, bool 
   for (size_t s = 0; s < colors.size(); ++s)
     vertex_attributes["COLOR_" + std::to_string(s)] =
         out.accessor(colors[s], kFloat, "VEC4", 4, kArrayBuffer);
+  if (!attributes.skin.empty()) {
+    const SkinVertices skin = skin_vertices(attributes.skin, vertices, path);
+    vertex_attributes["JOINTS_0"] = out.accessor(skin.joints, kUnsignedShort, "VEC4", 4, kArrayBuffer);
+    vertex_attributes["WEIGHTS_0"] = out.accessor(skin.weights, kFloat, "VEC4", 4, kArrayBuffer);
+  }
 
   // 2. One primitive per material, in the order the faces first use them; fans as above. Each
   // is a mesh of its own node, whose extras give its face sizes and say that its vertex copies
@@ -394,8 +495,10 @@ std::string gltf_bytes(const Mesh& mesh, const MeshAttributes& attributes, bool 
                              {"mesh", json["meshes"].size()},
                              {"extras", {{kFaceSizesKey, face_size_runs(sizes[material])},
                                          {kVertexCopiesKey, "merge by position"}}}});
+    if (!attributes.skin.empty()) json["nodes"].back()["skin"] = 0;
     json["meshes"].push_back({{"name", part}, {"primitives", Json::array({primitive})}});
   }
+  if (!attributes.skin.empty()) add_skin(json, out, attributes.skin, path);
 
   // 3. Materials, a texture per image, and the images.
   if (!attributes.materials.empty()) {
@@ -430,7 +533,12 @@ std::string gltf_bytes(const Mesh& mesh, const MeshAttributes& attributes, bool 
     }
   }
   std::string buffer = std::move(out.buffer());
-  return gltf_file_bytes(GltfDocument{std::move(json), std::move(buffer)}, binary, path);
+  return GltfDocument{std::move(json), std::move(buffer)};
+}
+
+std::string gltf_bytes(const Mesh& mesh, const MeshAttributes& attributes, bool binary,
+                       const std::string& name, const std::string& path) {
+  return gltf_file_bytes(gltf_document(mesh, attributes, binary, name, path), binary, path);
 }
 
 }  // namespace primo::detail

@@ -61,10 +61,37 @@ void append_raw(std::string& out, const std::vector<T>& values) {
 // RGBA), NORMAL (corner_normals, or the vertex normals above when the file had none) and POSITION.
 // Materials are written with their factors and textures; images are embedded in a GLB (a file the
 // source refers to is read now), and in a .gltf embedded as a data URI when the source embedded
-// them, else referred to relative to `path`'s folder. Throws Error "<path>: ..." as above, and when
-// an image file a GLB must embed cannot be read.
+// them, else referred to relative to `path`'s folder. A skin adds JOINTS_0 (unsigned short) and
+// WEIGHTS_0 (float) to the primitives, its joints as nodes after the mesh nodes and a skin the
+// mesh nodes name (docs/mesh-io.md, "Attributes"). Throws Error "<path>: ..." as above, when an
+// image file a GLB must embed cannot be read, and for a skin beyond glTF's 16-bit joint indices
+// or an inverse bind matrix beyond float32.
 std::string gltf_bytes(const Mesh& mesh, const MeshAttributes& attributes, bool binary,
                        const std::string& name, const std::string& path);
+
+// The document gltf_bytes(mesh, attributes, ...) makes a file of: the plain one above without
+// attributes, else one node and mesh per material, all sharing the vertex accessors.
+GltfDocument gltf_document(const Mesh& mesh, const MeshAttributes& attributes, bool binary,
+                           const std::string& name, const std::string& path);
+
+// Whether the attributes change the glTF written (UVs, colours, normal slots, materials or a
+// skin).
+bool has_gltf_attributes(const MeshAttributes& attributes);
+
+// The vertices of the file gltf_document(mesh, attributes, ...) writes: without attributes the
+// mesh's own; with them one per distinct (vertex, normal slot, UVs, colours) of the corners,
+// numbered in the order the corners first use them.
+struct GltfVertices {
+  std::vector<uint32_t> corner_vertex;  // per face corner, its glTF vertex
+  std::vector<int> mesh_vertex;         // per glTF vertex, the mesh vertex it copies
+  std::vector<int> normal_slot;         // per glTF vertex, its normal slot (-1: vertex normal)
+  std::vector<size_t> first_corner;     // with attributes, per glTF vertex, its first corner
+};
+GltfVertices gltf_vertices(const Mesh& mesh, const MeshAttributes& attributes);
+
+// The NORMAL of every glTF vertex: its slot's corner_normals, or vertex_normals without one.
+std::vector<Vec3> gltf_vertex_normals(const Mesh& mesh, const MeshAttributes& attributes,
+                                      const GltfVertices& vertices);
 
 // The name of the node extras key above.
 inline constexpr const char* kFaceSizesKey = "primo_face_sizes";

@@ -678,6 +678,17 @@ std::string mesh_file_bytes(const Mesh& mesh, const MeshAttributes& attributes,
   fail(path, "cannot save: unhandled format");
 }
 
+std::string save_note(const MeshAttributes& attributes, const std::string& path) {
+  if (attributes.skin.empty()) return "";
+  const std::optional<Format> format = format_of(extension_of(path));
+  if (!format || *format == Format::Gltf || *format == Format::Glb) return "";
+  std::string name = fs::path(path).extension().string().substr(1);
+  for (char& c : name) c = char(std::toupper(static_cast<unsigned char>(c)));
+  const size_t joints = attributes.skin.joints.size();
+  return path + ": the skin (" + std::to_string(joints) + (joints == 1 ? " joint" : " joints") +
+         ") is not saved: " + name + " holds none; save as .gltf or .glb to keep it";
+}
+
 void save_mesh(const Mesh& mesh, const std::string& path) {
   save_mesh(mesh, MeshAttributes(), path);
 }

@@ -73,6 +73,50 @@ void check_corner_values(const CornerValues<N>& set, const char* kind, size_t in
       if (!std::isfinite(x)) fail(source, name + ": value " + std::to_string(v) + " is not finite");
 }
 
+bool all_finite(const std::array<double, 16>& matrix) {
+  for (double x : matrix)
+    if (!std::isfinite(x)) return false;
+  return true;
+}
+
+// The sum of a vertex's weights may differ from 1 by rounding only (renormalised in double).
+constexpr double kWeightSumTolerance = 1e-9;
+
+void check_skin(const MeshSkin& skin, size_t n_vertices, const std::string& source) {
+  if (skin.empty() && skin.vertex_joints.empty() && skin.vertex_weights.empty()) return;
+  const int n_joints = int(skin.joints.size());
+  if (skin.vertex_joints.size() != n_vertices || skin.vertex_weights.size() != n_vertices)
+    fail(source, "the skin weighs " + std::to_string(skin.vertex_weights.size()) +
+                     " vertices, the mesh has " + std::to_string(n_vertices));
+  for (int j = 0; j < n_joints; ++j) {
+    const SkinJoint& joint = skin.joints[size_t(j)];
+    if (joint.parent < -1 || joint.parent >= j)
+      fail(source, "skin joint " + std::to_string(j) + " has parent " +
+                       std::to_string(joint.parent) + " (a parent comes before its children)");
+    if (!all_finite(joint.inverse_bind))
+      fail(source, "skin joint " + std::to_string(j) + ": its inverse bind matrix is not finite");
+    if (!all_finite(joint.rest))
+      fail(source, "skin joint " + std::to_string(j) + ": its rest transform is not finite");
+  }
+  for (size_t v = 0; v < n_vertices; ++v) {
+    double sum = 0;
+    for (int k = 0; k < kSkinInfluences; ++k) {
+      const int joint = skin.vertex_joints[v][size_t(k)];
+      const double weight = skin.vertex_weights[v][size_t(k)];
+      if (joint < 0 || joint >= n_joints)
+        fail(source, "vertex " + std::to_string(v) + " is weighed by joint " +
+                         std::to_string(joint) + " of " + std::to_string(n_joints));
+      if (!std::isfinite(weight) || weight < 0)
+        fail(source, "vertex " + std::to_string(v) + " has skin weight " + std::to_string(weight) +
+                         " (weights are finite and not negative)");
+      sum += weight;
+    }
+    if (std::abs(sum - 1) > kWeightSumTolerance)
+      fail(source, "the skin weights of vertex " + std::to_string(v) + " sum to " +
+                       std::to_string(sum) + ", not 1");
+  }
+}
+
 }  // namespace
 
 void check_attributes(const Mesh& mesh, const MeshAttributes& attributes,
@@ -114,6 +158,7 @@ void check_attributes(const Mesh& mesh, const MeshAttributes& attributes,
                          std::to_string(texture->image) + " of " +
                          std::to_string(attributes.images.size()));
   }
+  check_skin(attributes.skin, mesh.n_vertices(), source);
 }
 
 }  // namespace primo

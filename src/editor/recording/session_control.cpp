@@ -128,8 +128,8 @@ void SessionControl::export_animation(Editor& e, const std::string& path) {
   }
   e.info("Exporting the session animation to " + path + " (replaying " +
          std::to_string(session->frames()) + " frames)");
-  export_ = std::async(std::launch::async, [session, mesh, path] {
-    save_session_animation(*session, *mesh, 1, path);
+  export_ = std::async(std::launch::async, [session, mesh, path, attributes = doc->attributes] {
+    save_session_animation(*session, *mesh, 1, path, *attributes);
     return "Exported the session animation to " + path;
   });
 }

@@ -1,6 +1,7 @@
 // Vertex animations as glTF morph targets (primo/io/mesh_animation_gltf.h), read back through
 // Assimp as another tool reads them: targets sparse where few vertices move, dense otherwise,
-// the weights and times of the animation, and the rest mesh as save_mesh writes it.
+// the weights and times of the animation, and the rest mesh as save_mesh writes it, with its
+// attributes (whose size the bound counts).
 
 #include "primo/io/mesh_animation_gltf.h"
 
@@ -15,6 +16,7 @@
 
 #include "primo/util/error.h"
 #include "primo/mesh/mesh_generators.h"
+#include "primo/io/mesh_import.h"
 #include "primo/io/mesh_io.h"
 #include "primo/io/output_files.h"
 #include "support/test_support.h"
@@ -140,4 +142,31 @@ TEST(MeshAnimationGltf, TheSizeBoundCoversTheFile) {
     EXPECT_LE(size, bound) << path;
     EXPECT_GT(size, bound / 2) << path << ": a bound, but not a wild one";
   }
+}
+
+TEST(MeshAnimationGltf, TheSizeBoundCoversAFileWithUvsMaterialsAndAnEmbeddedImage) {
+  // BoxTextured.glb: a UV seam at every edge (24 corners' copies of 8 vertices), a material
+  // and the texture its GLB embeds.
+  const LoadedMesh box = load_mesh_noted(primo::test::source_path("tests/data/scenes/BoxTextured.glb"));
+  ASSERT_FALSE(box.attributes.images.empty());
+  ASSERT_FALSE(box.attributes.images[0].bytes.empty());
+  MeshAnimation animation(box.mesh, box.attributes);
+  std::vector<Vec3> frame = points_of(box.mesh);
+  for (int i = 0; i < 20; ++i) {
+    for (Vec3& p : frame) p = 1.01 * p + Vec3(0.01, 0.02, -0.01);
+    animation.add_frame(0.1 * i, frame, "frame");
+  }
+  for (const std::string path : {"x.glb", "x.gltf"}) {
+    const std::uint64_t bound = mesh_animation_size_bound(box.mesh, 20, path, box.attributes);
+    const std::uint64_t size = animation.file_bytes(path).size();
+    EXPECT_LE(size, bound) << path;
+    EXPECT_GT(size, bound / 2) << path << ": a bound, but not a wild one";
+    // Without the attributes the bound would be too small: the copies, UVs and image count.
+    EXPECT_GT(size, mesh_animation_size_bound(box.mesh, 20, path)) << path;
+  }
+  // Attributes of another mesh are refused naming what they belong to.
+  MeshAttributes wrong = box.attributes;
+  wrong.texcoords[0].corner.pop_back();
+  EXPECT_NE(error_of([&] { MeshAnimation(box.mesh, wrong); }).find("the animation's rest mesh"),
+            std::string::npos);
 }

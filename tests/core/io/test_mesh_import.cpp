@@ -231,12 +231,13 @@ TEST(SceneImport, ShippedFbxFromBlenderKeepsItsPolygonsAndAttributesAndSaysWhatI
   EXPECT_EQ(loaded.mesh.n_vertices(), 62u);
   EXPECT_EQ(face_sizes(loaded.mesh), (std::map<int, int>{{3, 16}, {4, 52}}));
   EXPECT_EQ(pieces(loaded.mesh), 1);
-  for (const char* said : {"merged 194 vertex copies", "256 -> 62", "the skin of 'Cylinder'",
-                           "9 bones", "1 animation", "1 camera", "1 light"})
+  for (const char* said : {"merged 194 vertex copies", "256 -> 62",
+                           "kept the skin of 'Cylinder' (9 bones)", "1 animation", "1 camera",
+                           "1 light"})
     EXPECT_NE(loaded.note.find(said), std::string::npos) << said << " in " << loaded.note;
-  // Its UVs, normals and material are kept, per face corner, not ignored.
+  // Its UVs, normals and material are kept, per face corner, and its skin, not ignored.
   const std::string ignored = loaded.note.substr(loaded.note.find("ignored:"));
-  for (const char* kept : {"material", "UVs", "normals"})
+  for (const char* kept : {"material", "UVs", "normals", "skin"})
     EXPECT_EQ(ignored.find(kept), std::string::npos) << kept << " in " << loaded.note;
   EXPECT_EQ(loaded.attributes.texcoords.size(), 1u);
   EXPECT_EQ(loaded.attributes.texcoords[0].corner.size(), 256u);

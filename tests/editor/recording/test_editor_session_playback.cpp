@@ -139,6 +139,25 @@ TEST(SessionControl, ProposesAFilePerMeshAndReadableDurations) {
   EXPECT_EQ(format_duration(125.4), "2 min 05 s");
 }
 
+// The animation `primo replay --animation` writes of `dir`/s.session.json, into a file named as
+// the editor's export `dir`/editor.glb (the node is named after the file); "" when it fails.
+std::string replayed_animation(const std::string& dir) {
+  std::filesystem::create_directories(dir + "/command");
+  const primo::test::CommandResult run = primo::test::run_primo(
+      "replay " + dir + "/s.session.json -o " + dir + "/final.obj --animation " + dir +
+      "/command/editor.glb");
+  EXPECT_EQ(run.exit_code, 0) << run.err;
+  return run.exit_code == 0 ? primo::test::read_text(dir + "/command/editor.glb") : "";
+}
+
+// Lets the editor run (a minute at most) until its animation export is done.
+void wait_for_export(Editor& e) {
+  for (int i = 0; i < 6000 && e.sessions.exporting(); ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    e.update(0.016);
+  }
+}
+
 TEST(EditorSessions, ExportsTheAnimationTheReplayCommandWrites) {
   const std::string dir = primo::test::temp_dir();
   const primo::test::RecordedSession r = primo::test::record_bar_session(dir + "/bar.obj");
@@ -155,26 +174,43 @@ TEST(EditorSessions, ExportsTheAnimationTheReplayCommandWrites) {
   ASSERT_TRUE(e.sessions.has_session());
   e.sessions.export_animation(e, dir + "/editor.glb");
   EXPECT_TRUE(e.sessions.exporting());
-  for (int i = 0; i < 6000 && e.sessions.exporting(); ++i) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    e.update(0.016);
-  }
+  wait_for_export(e);
   ASSERT_FALSE(e.sessions.exporting());
   EXPECT_EQ(e.messages().back().text, "Exported the session animation to " + dir + "/editor.glb");
-  // The command, into a file of the same name (the node is named after the file).
-  std::filesystem::create_directories(dir + "/command");
-  const primo::test::CommandResult run = primo::test::run_primo(
-      "replay " + dir + "/s.session.json -o " + dir + "/final.obj --animation " + dir +
-      "/command/editor.glb");
-  ASSERT_EQ(run.exit_code, 0) << run.err;
   const std::string exported = primo::test::read_text(dir + "/editor.glb");
   EXPECT_GT(exported.size(), 1000u);
-  EXPECT_TRUE(exported == primo::test::read_text(dir + "/command/editor.glb"));
+  EXPECT_TRUE(exported == replayed_animation(dir));
 
   // A name that is no glTF: refused at once, nothing written.
   e.sessions.export_animation(e, dir + "/anim.obj");
   EXPECT_FALSE(e.sessions.exporting());
   EXPECT_NE(e.messages().back().text.find("anim.obj: an animation is written as glTF"), std::string::npos);
+}
+
+TEST(EditorSessions, ExportedAnimationKeepsTheMeshsUvsAsTheReplayCommandDoes) {
+  const std::string dir = primo::test::temp_dir();
+  const primo::test::RecordedSession r = primo::test::record_bar_session(dir + "/bar.obj");
+  // The bar with a UV per face corner.
+  MeshAttributes uvs;
+  uvs.texcoords.emplace_back();
+  const int corners = first_corners(r.mesh).back();
+  for (int c = 0; c < corners; ++c) {
+    uvs.texcoords[0].values.push_back({double(c % 7) / 7, double(c % 5) / 5});
+    uvs.texcoords[0].corner.push_back(c);
+  }
+  save_mesh(r.mesh, uvs, dir + "/bar.obj");
+  save_session(r.session, dir + "/s.session.json");
+  Editor e;
+  e.adopt(load_document(dir + "/bar.obj"));
+  e.update(0.016);
+  e.sessions.open_playback(e, dir + "/s.session.json");
+  ASSERT_TRUE(e.sessions.has_session());
+  e.sessions.export_animation(e, dir + "/editor.glb");
+  wait_for_export(e);
+  ASSERT_FALSE(e.sessions.exporting());
+  const std::string exported = primo::test::read_text(dir + "/editor.glb");
+  EXPECT_NE(exported.find("TEXCOORD_0"), std::string::npos);
+  EXPECT_TRUE(exported == replayed_animation(dir));
 }
 
 TEST(EditorSessions, PlaybackRedrawsHandleColoursWhenTheHandlesChange) {

@@ -55,6 +55,39 @@ void texture_from(const Json& json, MaterialTexture& texture) {
   texture.texcoord = json.at(1).get<int>();
 }
 
+Json skin_json(const MeshSkin& skin) {
+  Json names = Json::array(), parents = Json::array();
+  std::vector<std::array<double, 16>> rest, inverse_bind;
+  for (const SkinJoint& joint : skin.joints) {
+    names.push_back(joint.name);
+    parents.push_back(joint.parent);
+    rest.push_back(joint.rest);
+    inverse_bind.push_back(joint.inverse_bind);
+  }
+  return {{"names", names},
+          {"parents", parents},
+          {"rest", binary_of(rest)},
+          {"inverse_bind", binary_of(inverse_bind)},
+          {"vertex_joints", binary_of(skin.vertex_joints)},
+          {"vertex_weights", binary_of(skin.vertex_weights)}};
+}
+
+bool skin_from(const Json& json, MeshSkin& skin) {
+  std::vector<std::array<double, 16>> rest, inverse_bind;
+  const Json& names = json.at("names");
+  const Json& parents = json.at("parents");
+  if (!from_binary(json.at("rest"), rest) || !from_binary(json.at("inverse_bind"), inverse_bind) ||
+      !from_binary(json.at("vertex_joints"), skin.vertex_joints) ||
+      !from_binary(json.at("vertex_weights"), skin.vertex_weights) || !names.is_array() ||
+      names.size() != rest.size() || parents.size() != rest.size() ||
+      inverse_bind.size() != rest.size())
+    return false;
+  skin.joints.resize(rest.size());
+  for (size_t j = 0; j < rest.size(); ++j)
+    skin.joints[j] = {names[j].get<std::string>(), parents[j].get<int>(), rest[j], inverse_bind[j]};
+  return true;
+}
+
 }  // namespace
 
 std::string encode_attributes(const MeshAttributes& a) {
@@ -87,7 +120,8 @@ std::string encode_attributes(const MeshAttributes& a) {
                      {"n_normals", a.n_normals},
                      {"face_material", binary_of(a.face_material)},
                      {"materials", materials},
-                     {"images", images}};
+                     {"images", images},
+                     {"skin", skin_json(a.skin)}};
   const std::vector<uint8_t> bytes = Json::to_cbor(json);
   return std::string(bytes.begin(), bytes.end());
 }
@@ -131,7 +165,7 @@ bool decode_attributes(std::string_view bytes, MeshAttributes& a) {
       image.bytes.assign(data.begin(), data.end());
       a.images.push_back(std::move(image));
     }
-    return true;
+    return skin_from(json.at("skin"), a.skin);
   } catch (const std::exception&) {
     return false;
   }

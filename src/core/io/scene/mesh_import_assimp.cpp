@@ -52,6 +52,7 @@
 #include "scene_reader_process.h"
 #include "scene_signature.h"
 #include "checks/threemf_checks.h"
+#include "scene_skin.h"
 #include "primo/util/error.h"
 #include "primo/io/input_files.h"
 #include "primo/io/mesh_import.h"
@@ -219,7 +220,7 @@ struct Instance {
 class SceneBaker {
  public:
   SceneBaker(const aiScene& scene, const std::string& path)
-      : scene_(scene), path_(path), attributes_(scene, path) {}
+      : scene_(scene), path_(path), attributes_(scene, path), skin_(scene, path) {}
 
   SceneSoup bake() {
     if (!scene_.mRootNode) fail(path_, "cannot read: the " + format_name(path_) + " scene has no nodes");
@@ -231,6 +232,7 @@ class SceneBaker {
     }
     SceneSoup out;
     soup_.attributes = attributes_.finish(dropped_);
+    soup_.attributes.skin = skin_.finish(soup_.points.size(), skin_said_);
     out.note = note();
     if (instances_.size() > 1) out.parts = parts();
     out.soup = std::move(soup_);
@@ -291,6 +293,7 @@ class SceneBaker {
       if (inserted) soup_.points.push_back(p);
       index_of[v] = it->second;
     }
+    skin_.add_mesh(node, mesh, transform, index_of);
 
     // Faces: points and lines are counted and left out.
     std::vector<std::vector<int>> faces;
@@ -347,7 +350,6 @@ class SceneBaker {
     instances_.push_back(instance);
 
     // What the soup leaves out of this mesh.
-    if (mesh.mNumBones > 0) skins_.emplace_back(quoted_name(node.mName), mesh.mNumBones);
     morph_targets_ += mesh.mNumAnimMeshes;
   }
 
@@ -375,13 +377,11 @@ class SceneBaker {
     const std::string format = format_name(path_);
     if (any_foreign_faces_ && format == "glTF")
       said.push_back("glTF stores triangles only, so the faces are triangles");
+    said.insert(said.end(), skin_said_.begin(), skin_said_.end());
 
-    // UVs, normals, colours and materials are kept (SceneAttributeCollector).
+    // UVs, normals, colours and materials are kept (SceneAttributeCollector), and the skin
+    // (SceneSkinCollector).
     std::vector<std::string> ignored = dropped_;
-    for (size_t s = 0; s < skins_.size() && s < 3; ++s)
-      ignored.push_back("the skin of " + skins_[s].first + " (" +
-                        plural(skins_[s].second, "bone", "bones") + "; bind pose used)");
-    if (skins_.size() > 3) ignored.push_back(std::to_string(skins_.size() - 3) + " more skins");
     if (morph_targets_) ignored.push_back(plural(morph_targets_, "morph target", "morph targets"));
     if (scene_.mNumAnimations)
       ignored.push_back(plural(scene_.mNumAnimations, "animation", "animations"));
@@ -424,7 +424,8 @@ class SceneBaker {
   std::vector<std::string> dropped_;  // attributes that could not be kept
   bool any_foreign_faces_ = false;  // faces of meshes PriMo did not write
   bool face_sizes_mismatch_ = false;
-  std::vector<std::pair<std::string, size_t>> skins_;
+  SceneSkinCollector skin_;
+  std::vector<std::string> skin_said_;  // what the skin kept and changed
 };
 
 // Leaves `importer` only the readers of the format `path`'s extension names (glTF has two,

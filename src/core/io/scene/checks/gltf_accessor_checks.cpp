@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
+#include <cstring>
 
 #include "primo/util/error.h"
 #include "primo/io/input_files.h"
@@ -518,8 +520,72 @@ class Checker {
       if (skin == nodes[v].end() || !skin->is_number_unsigned() ||
           skin->get<uint64_t>() >= skins.size())
         continue;  // Assimp leaves the mesh unskinned
-      check_skin(skins[skin->get<size_t>()],
-                 "node " + std::to_string(v) + "'s skin " + std::to_string(skin->get<uint64_t>()));
+      const std::string item =
+          "node " + std::to_string(v) + "'s skin " + std::to_string(skin->get<uint64_t>());
+      check_skin(skins[skin->get<size_t>()], item);
+      check_skinned_vertices(array_of(outline_, "meshes")[mesh->get<size_t>()],
+                             skins[skin->get<size_t>()], item);
+    }
+  }
+
+  // Calls `check(value, element)` for every component of every element of `a` as Assimp reads
+  // it: the view's elements, then a sparse accessor's substituted ones.
+  template <typename Check>
+  void for_each_component(const Accessor& a, Check check) {
+    const uint64_t size = component_bytes(a.component), n = components(a.type);
+    const auto read = [&](std::string_view bytes, uint64_t at, uint64_t element) {
+      for (uint64_t k = 0; k < n; ++k) {
+        const uint64_t bits = unsigned_at(bytes, at + k * size, size);
+        if (a.component == 5126) {
+          float value;
+          const uint32_t word = uint32_t(bits);
+          std::memcpy(&value, &word, 4);
+          check(double(value), element);
+        } else {
+          check(double(bits), element);
+        }
+      }
+    };
+    if (a.has_view)
+      if (const auto bytes = bytes_of(views_[size_t(a.view)])) {
+        const uint64_t stride = views_[size_t(a.view)].stride ? views_[size_t(a.view)].stride
+                                                               : a.element;
+        for (uint64_t i = 0; i < a.count; ++i) read(*bytes, a.offset + i * stride, i);
+      }
+    if (a.sparse)
+      if (const auto values = bytes_of(views_[size_t(a.sparse->value_view)]))
+        for (uint64_t i = 0; i < a.sparse->count; ++i)
+          read(*values, a.sparse->value_offset + i * a.element, i);
+  }
+
+  // A skinned primitive's JOINTS_n name joints of its skin and its float WEIGHTS_n are finite
+  // and not negative: Assimp 5.2 drops the influences of other joints and of weights it finds
+  // no larger than 0 without a word, and passes a NaN on.
+  void check_skinned_vertices(const Json& mesh, const Json& skin, const std::string& item) {
+    if (!mesh.is_object() || !skin.is_object()) return;
+    const auto primitives = mesh.find("primitives");
+    const auto joints = skin.find("joints");
+    if (primitives == mesh.end() || !primitives->is_array() || joints == skin.end() ||
+        !joints->is_array())
+      return;  // Assimp says
+    const uint64_t n_joints = joints->size();
+    for (const Json& primitive : *primitives) {
+      if (!primitive.is_object() || !has(primitive, "attributes")) continue;
+      for (const auto& [name, index] : primitive["attributes"].items()) {
+        const bool joint = name.rfind("JOINTS_", 0) == 0, weight = name.rfind("WEIGHTS_", 0) == 0;
+        if (!joint && !weight) continue;
+        const Accessor& a = accessor_of(index, item + " " + name.substr(0, 30));
+        for_each_component(a, [&](double value, uint64_t element) {
+          if (joint && value >= double(n_joints))
+            refuse(path_, item + ": vertex " + std::to_string(element) + " names joint " +
+                              std::to_string(uint64_t(value)) + " in " + name.substr(0, 30) +
+                              ", but the skin has " + std::to_string(n_joints) + " joints");
+          if (weight && !(value >= 0 && std::isfinite(value)))
+            refuse(path_, item + ": vertex " + std::to_string(element) + " has the weight " +
+                              std::to_string(value) + " in " + name.substr(0, 30) +
+                              " (weights are finite and not negative)");
+        });
+      }
     }
   }
 

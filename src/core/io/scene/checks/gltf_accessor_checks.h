@@ -61,7 +61,8 @@ constexpr uint64_t kMaxGltfViewlessBytes = uint64_t(1) << 28;
 //   2 vertices for a line loop or strip, fewer than 3 for a triangle strip or fan, or a number
 //   of triangle corners that is not a multiple of 3;
 // - a node names a mesh that does not exist, or has a mesh and a skin whose inverseBindMatrices
-//   are missing, not float MAT4 or fewer than its joints;
+//   are missing, not float MAT4 or fewer than its joints, or whose primitives' JOINTS_n name a
+//   joint the skin lacks or whose float WEIGHTS_n are negative or not finite;
 // - an animation sampler names an accessor that does not exist, or is CUBICSPLINE with fewer
 //   than 3 outputs per input.
 // JSON that did not parse, and glTF 1 (objects by id), are left to Assimp.
