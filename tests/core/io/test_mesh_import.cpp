@@ -267,7 +267,9 @@ TEST(SceneImport, ShippedSamplesFromOtherTools) {
     EXPECT_EQ(face_sizes(loaded.mesh), s.sizes) << s.path;
     EXPECT_EQ(pieces(loaded.mesh), 1) << s.path;
     EXPECT_GT(signed_volume(loaded.mesh), 0) << s.path << ": faces point outwards";
-    if (!s.said.empty()) EXPECT_NE(loaded.note.find(s.said), std::string::npos) << loaded.note;
+    if (!s.said.empty()) {
+      EXPECT_NE(loaded.note.find(s.said), std::string::npos) << loaded.note;
+    }
     EXPECT_EQ(faces_of(load_mesh(source_path(s.path))), faces_of(loaded.mesh)) << s.path;
   }
 }
@@ -296,8 +298,9 @@ TEST(SceneImport, SplitVerticesFromAssimpsExportersMergeIntoOneConnectedMesh) {
     EXPECT_EQ(pieces(loaded.mesh), 1) << c.name;
     // Assimp's OBJ reader gave every corner its own vertex; its COLLADA and 3MF writers keep
     // them (its glTF writer joins them itself).
-    if (std::string(c.format) == "collada" || std::string(c.format) == "3mf")
+    if (std::string(c.format) == "collada" || std::string(c.format) == "3mf") {
       EXPECT_NE(loaded.note.find("merged"), std::string::npos) << c.name << ": " << loaded.note;
+    }
     // The same positions: each vertex read is one of the mesh's, to the precision of the
     // exporter (float32 in glTF, 6 digits in 3MF's and COLLADA's text).
     std::set<int> matched;

@@ -167,6 +167,8 @@ TEST(Turn, AWholeTurnInAScenarioIsTwistedOnce) {
     std::cout << "[ metric   ] scenario turning the tube's end " << turn << " degrees: turned "
               << quarter << " a quarter up, E = " << energy << "\n";
     EXPECT_NEAR(quarter, turn / 4, 0.15 * std::abs(turn / 4) + 1e-6);
-    if (turn == 0.0) EXPECT_LT(energy, 1e-20);
+    if (turn == 0.0) {
+      EXPECT_LT(energy, 1e-20);
+    }
   }
 }
