@@ -574,15 +574,17 @@ class Checker {
       for (const auto& [name, index] : primitive["attributes"].items()) {
         const bool joint = name.rfind("JOINTS_", 0) == 0, weight = name.rfind("WEIGHTS_", 0) == 0;
         if (!joint && !weight) continue;
-        const Accessor& a = accessor_of(index, item + " " + name.substr(0, 30));
+        // A named copy: C++17 lambdas cannot capture a structured binding.
+        const std::string attribute = name.substr(0, 30);
+        const Accessor& a = accessor_of(index, item + " " + attribute);
         for_each_component(a, [&](double value, uint64_t element) {
           if (joint && value >= double(n_joints))
             refuse(path_, item + ": vertex " + std::to_string(element) + " names joint " +
-                              std::to_string(uint64_t(value)) + " in " + name.substr(0, 30) +
+                              std::to_string(uint64_t(value)) + " in " + attribute +
                               ", but the skin has " + std::to_string(n_joints) + " joints");
           if (weight && !(value >= 0 && std::isfinite(value)))
             refuse(path_, item + ": vertex " + std::to_string(element) + " has the weight " +
-                              std::to_string(value) + " in " + name.substr(0, 30) +
+                              std::to_string(value) + " in " + attribute +
                               " (weights are finite and not negative)");
         });
       }
