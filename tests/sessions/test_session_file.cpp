@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -13,7 +14,9 @@
 #include "primo/util/error.h"
 #include "primo/io/mesh_io.h"
 #include "primo/mesh/geometry.h"
+#include "primo/mesh/mesh_generators.h"
 #include "primo/sessions/session.h"
+#include "primo/sessions/session_mapping.h"
 #include "support/session_support.h"
 #include "support/test_support.h"
 
@@ -226,6 +229,22 @@ TEST(SessionFile, BadFalloffsAreRefusedNamingWhere) {
   const int own = good.events[1].handles[1].faces->front();
   EXPECT_EQ(validate_error(written([&](SessionFalloff& f) { f.faces = {own}, f.weights = {1.0}; })),
             where + "faces[0]: face " + std::to_string(own) + " is one of the handle's own faces");
+}
+
+TEST(SessionFile, AFalloffIsCarriedToAFinerMeshWithItsWeights) {
+  // `primo replay --mesh`: each coarse falloff face's weight goes to its fine faces.
+  const RecordedSession r = record_bar_session("bar.obj");
+  const Session coarse = with_falloff(r);
+  const Mesh fine = make_bar(0.2, 1.0, 4, 20);
+  const Session mapped = map_session_to_mesh(coarse, r.mesh, fine);
+  const SessionState end = validate_session(mapped, int(fine.n_faces()));
+  ASSERT_TRUE(end.handles[1].falloff);
+  const SessionFalloff& was = *coarse.events[1].handles[1].falloff;
+  const SessionFalloff& now = *end.handles[1].falloff;
+  EXPECT_EQ(now.radius, was.radius);
+  EXPECT_EQ(now.faces.size(), 4 * was.faces.size()) << "each quad of the bar splits in four";
+  for (double w : now.weights)
+    EXPECT_NE(std::find(was.weights.begin(), was.weights.end(), w), was.weights.end()) << w;
 }
 
 TEST(SessionFile, ASessionWithoutFalloffsIsWrittenAsBefore) {
