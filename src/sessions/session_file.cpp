@@ -149,13 +149,34 @@ json handle_json(const SessionHandle& g) {
   j["translate"] = vec_json(g.pose.translate);
   j["rotation"] = quat_json(g.pose.rotation);
   if (!turn_is_principal(g.pose)) j["turn"] = vec_json(g.pose.whole_turn());
+  if (g.falloff)
+    j["falloff"] = {{"radius", g.falloff->radius},
+                    {"faces", g.falloff->faces},
+                    {"weights", g.falloff->weights}};
   return j;
+}
+
+// The faces' range and whether they are the handle's own need the mesh and the handle:
+// apply_event checks them.
+std::shared_ptr<const SessionFalloff> parse_falloff(const json& j, const std::string& path) {
+  check_object(j, path, {"radius", "faces", "weights"});
+  auto f = std::make_shared<SessionFalloff>();
+  f->radius = number(member(j, path, "radius"), at(path, "radius"));
+  if (f->radius < 0.0) fail(at(path, "radius"), "must not be negative");
+  f->faces = int_array(member(j, path, "faces"), at(path, "faces"));
+  f->weights = number_array(member(j, path, "weights"), at(path, "weights"));
+  if (f->weights.size() != f->faces.size())
+    fail(at(path, "weights"), "must have as many entries as faces");
+  for (size_t i = 0; i < f->weights.size(); ++i)
+    if (!(f->weights[i] > 0.0 && f->weights[i] <= 1.0))
+      fail(at(path, "weights") + "[" + std::to_string(i) + "]", "must be in (0, 1]");
+  return f;
 }
 
 SessionHandle parse_handle(const json& j, const std::string& path) {
   check_object(j, path,
                {"name", "mode", "faces", "stiffness", "center", "color", "translate", "rotation",
-                "turn"});
+                "turn", "falloff"});
   SessionHandle g;
   const json& name = member(j, path, "name");
   if (!name.is_string()) fail(at(path, "name"), "expected a string");
@@ -172,6 +193,7 @@ SessionHandle parse_handle(const json& j, const std::string& path) {
   if (j.contains("translate")) g.pose.translate = vec3(j["translate"], at(path, "translate"));
   if (j.contains("rotation")) g.pose.rotation = quaternion(j["rotation"], at(path, "rotation"));
   parse_turn(j, path, g.pose);
+  if (j.contains("falloff")) g.falloff = parse_falloff(j["falloff"], at(path, "falloff"));
   return g;
 }
 

@@ -46,6 +46,16 @@ Session map_session_to_mesh(const Session& session, const Mesh& coarse, const Me
       std::sort(faces.begin(), faces.end());
       if (faces.empty()) throw Error("handle '" + g.name + "' has no face on the finer mesh");
       g.faces = std::make_shared<const std::vector<int>>(std::move(faces));
+      if (!g.falloff) continue;
+      // A coarse face's weight goes to each of its fine faces.
+      std::vector<std::pair<int, double>> fw;
+      for (size_t i = 0; i < g.falloff->faces.size(); ++i)
+        for (int x : children[size_t(g.falloff->faces[i])]) fw.push_back({x, g.falloff->weights[i]});
+      std::sort(fw.begin(), fw.end());
+      auto falloff = std::make_shared<SessionFalloff>();
+      falloff->radius = g.falloff->radius;
+      for (const auto& [x, w] : fw) falloff->faces.push_back(x), falloff->weights.push_back(w);
+      g.falloff = falloff;
     }
   };
   auto map_factors = [&](FaceFactors& f) {

@@ -8,7 +8,8 @@ namespace {
 // Anything but the pose changed: the recording needs the whole handle list again.
 bool same_handle(const SessionHandle& a, const SessionHandle& b) {
   return a.name == b.name && (a.faces == b.faces || *a.faces == *b.faces) && a.mode == b.mode &&
-         a.stiffness == b.stiffness && a.center == b.center && a.color == b.color;
+         a.stiffness == b.stiffness && a.center == b.center && a.color == b.color &&
+         same_contents(a.falloff, b.falloff);
 }
 
 const FaceFactors& layer_factors(const SessionState& state, FactorLayer layer) {

@@ -11,16 +11,16 @@
 namespace primo {
 namespace {
 
-std::unique_ptr<Deformer> build(const Mesh& mesh, const SessionState& state,
-                                const Deformer* previous) {
-  const SessionSolverInputs in = solver_inputs(state);
+std::unique_ptr<Deformer> build(const Mesh& mesh, const FaceGeometry& rest,
+                                const SessionState& state, const Deformer* previous) {
+  const SessionSolverInputs in = solver_inputs(state, rest);
   auto d = std::make_unique<Deformer>(mesh, in.params, in.handles, in.forces);
   if (previous) d->set_face_motions(previous->face_motions());
   return d;
 }
 
-void set_targets(Deformer& d, const SessionState& state) {
-  const SessionSolverInputs in = solver_inputs(state);
+void set_targets(Deformer& d, const FaceGeometry& rest, const SessionState& state) {
+  const SessionSolverInputs in = solver_inputs(state, rest);
   for (size_t h = 0; h < in.handles.size(); ++h)
     d.set_handle_transform(int(h), in.handles[h].transform, in.handles[h].turn);
   for (size_t f = 0; f < in.forces.size(); ++f)
@@ -46,7 +46,8 @@ ReplayResult replay_session(const Session& session, const Mesh& mesh, const Repl
 
   ReplayResult r;
   SessionState state = initial_state(session, n_faces);
-  std::unique_ptr<Deformer> d = build(mesh, state, nullptr);
+  const FaceGeometry rest = compute_face_geometry(mesh);
+  std::unique_ptr<Deformer> d = build(mesh, rest, state, nullptr);
   bool converged = false;
   size_t next = 0;
   const int frames = session.frames();
@@ -67,11 +68,11 @@ ReplayResult replay_session(const Session& session, const Mesh& mesh, const Repl
       apply_event(state, session.events[next++], n_faces);
     const bool changed = !(before == state);
     if (!same_solver_structure(before, state)) {
-      d = build(mesh, state, d.get());
+      d = build(mesh, rest, state, d.get());
       ++r.rebuilds;
       converged = false;
     } else if (changed) {
-      set_targets(*d, state);
+      set_targets(*d, rest, state);
       converged = false;
     }
     if (changed) idle_iterations = 0;
@@ -109,7 +110,7 @@ ReplayResult replay_session(const Session& session, const Mesh& mesh, const Repl
 
 std::vector<Vec3> solve_from_rest(const SessionState& state, const Mesh& mesh,
                                   const SolverSpec& spec) {
-  std::unique_ptr<Deformer> d = build(mesh, state, nullptr);
+  std::unique_ptr<Deformer> d = build(mesh, compute_face_geometry(mesh), state, nullptr);
   for (int pass = 0; pass < 2; ++pass)
     if (!d->solve(options_for(spec, int(mesh.n_faces()), spec.max_iterations)).converged) break;
   return d->vertex_positions();

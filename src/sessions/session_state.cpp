@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "primo/model/falloff_springs.h"
+
 namespace primo {
 
 bool same_factors(const FaceFactors& a, const FaceFactors& b) {
@@ -15,10 +17,12 @@ bool same_factors(const FaceFactors& a, const FaceFactors& b) {
 
 namespace {
 
-// What the solver is built from: the faces, how they are held, and a spring's stiffness.
+// What the solver is built from: the faces, how they are held, the falloff, and the stiffness
+// of a spring or a falloff.
 bool same_handle_structure(const SessionHandle& a, const SessionHandle& b) {
   return same_contents(a.faces, b.faces) && a.mode == b.mode &&
-         (a.mode != SessionHandleMode::Spring || a.stiffness == b.stiffness);
+         ((a.mode != SessionHandleMode::Spring && !a.falloff) || a.stiffness == b.stiffness) &&
+         same_contents(a.falloff, b.falloff);
 }
 
 }  // namespace
@@ -44,7 +48,7 @@ bool operator==(const SessionState& a, const SessionState& b) {
   return true;
 }
 
-SessionSolverInputs solver_inputs(const SessionState& state) {
+SessionSolverInputs solver_inputs(const SessionState& state, const FaceGeometry& rest) {
   SessionSolverInputs in;
   in.params.height = state.prisms.height;
   in.params.height_unit = state.prisms.height_unit;
@@ -61,6 +65,15 @@ SessionSolverInputs solver_inputs(const SessionState& state) {
     if (h.mode == SessionHandleMode::Position) fix = Fix::Position;
     if (h.mode == SessionHandleMode::Orientation) fix = Fix::Orientation;
     in.handles.push_back({h.name, *h.faces, fix, h.transform(), h.pose.known_turn()});
+  }
+  for (const SessionHandle& h : state.handles) {
+    if (!h.falloff) continue;
+    const RigidTransform motion =
+        falloff_motion(h.transform(), h.pose.translate, h.mode == SessionHandleMode::Spring);
+    const std::vector<FalloffSpring> springs =
+        falloff_springs(rest, h.falloff->faces, h.falloff->weights);
+    for (Force& f : falloff_forces(h.name, springs, motion, h.stiffness))
+      in.forces.push_back(std::move(f));
   }
   return in;
 }

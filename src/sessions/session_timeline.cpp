@@ -44,6 +44,17 @@ void check_handles(const std::vector<SessionHandle>& handles, int n_faces,
       owner[size_t(f)] = int(h);
     }
   }
+  // A falloff's springs pull free faces: none of its own handle's.
+  for (size_t h = 0; h < handles.size(); ++h) {
+    if (!handles[h].falloff) continue;
+    const std::string p = at(path + "[" + std::to_string(h) + "]", "falloff.faces");
+    const std::vector<int>& faces = handles[h].falloff->faces;
+    check_faces(faces, n_faces, p, true);
+    for (size_t i = 0; i < faces.size(); ++i)
+      if (owner[size_t(faces[i])] == int(h))
+        fail(p + "[" + std::to_string(i) + "]",
+             "face " + std::to_string(faces[i]) + " is one of the handle's own faces");
+  }
 }
 
 FaceFactors set_factors(const FaceFactors& old, int n_faces, const std::vector<int>& faces,

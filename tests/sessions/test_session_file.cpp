@@ -3,13 +3,20 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <functional>
+#include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "primo/util/error.h"
 #include "primo/io/mesh_io.h"
+#include "primo/mesh/geometry.h"
+#include "primo/mesh/mesh_generators.h"
 #include "primo/sessions/session.h"
+#include "primo/sessions/session_mapping.h"
 #include "support/session_support.h"
 #include "support/test_support.h"
 
@@ -141,4 +148,110 @@ TEST(SessionFile, ShippedSessionIsValid) {
   for (const SessionEvent& ev : s.events)
     undo = undo || ev.type == SessionEvent::Type::Undo, redo = redo || ev.type == SessionEvent::Type::Redo;
   EXPECT_TRUE(undo && redo);
+}
+
+namespace {
+
+// The recorded bar session with a falloff on its top handle from the first handles event that
+// has it: the free faces just below the top, weights falling away from it.
+Session with_falloff(const RecordedSession& r) {
+  Session s = r.session;
+  SessionEvent& e = s.events[1];
+  std::vector<bool> taken(r.mesh.n_faces(), false);
+  for (const SessionHandle& h : e.handles)
+    for (int f : *h.faces) taken[size_t(f)] = true;
+  auto falloff = std::make_shared<SessionFalloff>();
+  falloff->radius = 0.25;
+  for (int f = int(r.mesh.n_faces()) - 1; f >= 0 && falloff->faces.size() < 6; --f)
+    if (!taken[size_t(f)]) falloff->faces.insert(falloff->faces.begin(), f);
+  for (size_t i = 0; i < falloff->faces.size(); ++i) falloff->weights.push_back(0.25 + 0.125 * double(i));
+  for (size_t i = 1; i < s.events.size(); ++i)
+    if (s.events[i].type == SessionEvent::Type::Handles) s.events[i].handles[1].falloff = falloff;
+  return s;
+}
+
+}  // namespace
+
+TEST(SessionFile, AFalloffRoundTripsAndItsReplayPullsTheFreeFaces) {
+  const RecordedSession r = record_bar_session("bar.obj");
+  const Session s = with_falloff(r);
+  const std::string text = session_to_json(s, "");
+  EXPECT_NE(text.find("\"falloff\":{\"faces\":["), std::string::npos);
+  const Session back = parse_session(text, "s.json");
+  EXPECT_EQ(session_to_json(back, ""), text);
+  const SessionState end = validate_session(back, int(r.mesh.n_faces()));
+  ASSERT_TRUE(end.handles[1].falloff);
+  EXPECT_TRUE(*end.handles[1].falloff == *s.events[1].handles[1].falloff);
+  EXPECT_FALSE(end == validate_session(r.session, int(r.mesh.n_faces())));
+  // One spring a falloff face, after the handles' own forces.
+  const SessionSolverInputs in = solver_inputs(end, compute_face_geometry(r.mesh));
+  ASSERT_EQ(in.forces.size(), end.handles[1].falloff->faces.size());
+  EXPECT_EQ(in.forces[0].name, end.handles[1].name + " falloff");
+  EXPECT_EQ(in.forces[0].faces, std::vector<int>{end.handles[1].falloff->faces[0]});
+}
+
+TEST(SessionFile, BadFalloffsAreRefusedNamingWhere) {
+  const RecordedSession r = record_bar_session("bar.obj");
+  const int n = int(r.mesh.n_faces());
+  const Session good = with_falloff(r);
+  const std::string where = "s.json: events[1] (handles): handles[1].falloff.";
+  auto written = [&](const std::function<void(SessionFalloff&)>& change) {
+    Session s = good;
+    auto f = std::make_shared<SessionFalloff>(*s.events[1].handles[1].falloff);
+    change(*f);
+    s.events[1].handles[1].falloff = f;
+    return session_to_json(s, "");
+  };
+  auto parse_error = [&](const std::string& t) { return error_of([&] { parse_session(t, "s.json"); }); };
+  auto validate_error = [&](const std::string& t) {
+    return error_of([&] { validate_session(parse_session(t, "s.json"), n); });
+  };
+  EXPECT_EQ(parse_error(written([](SessionFalloff& f) { f.weights[2] = 0.0; })),
+            where + "weights[2]: must be in (0, 1]");
+  EXPECT_EQ(parse_error(written([](SessionFalloff& f) { f.weights[0] = 1.5; })),
+            where + "weights[0]: must be in (0, 1]");
+  EXPECT_EQ(parse_error(written([](SessionFalloff& f) { f.weights[1] = std::nan(""); })),
+            where + "weights[1]: expected a number");
+  EXPECT_EQ(parse_error(written([](SessionFalloff& f) { f.weights.pop_back(); })),
+            where + "weights: must have as many entries as faces");
+  EXPECT_EQ(parse_error(written([](SessionFalloff& f) { f.radius = -0.5; })),
+            where + "radius: must not be negative");
+  EXPECT_EQ(parse_error(written([](SessionFalloff& f) { f.radius = std::numeric_limits<double>::infinity(); })),
+            where + "radius: expected a number");
+  std::string unknown = written([](SessionFalloff&) {});
+  unknown.insert(unknown.find("\"falloff\":{") + 11, "\"shape\":\"smooth\",");
+  EXPECT_EQ(parse_error(unknown), where + "shape: unknown key");
+  EXPECT_NE(validate_error(written([n](SessionFalloff& f) { f.faces[3] = n + 2; }))
+                .find(where + "faces[3]: face " + std::to_string(n + 2) + " out of range"),
+            std::string::npos);
+  EXPECT_EQ(validate_error(written([](SessionFalloff& f) { f.faces[1] = f.faces[0]; })),
+            where + "faces[1]: faces must be sorted and distinct");
+  const int own = good.events[1].handles[1].faces->front();
+  EXPECT_EQ(validate_error(written([&](SessionFalloff& f) { f.faces = {own}, f.weights = {1.0}; })),
+            where + "faces[0]: face " + std::to_string(own) + " is one of the handle's own faces");
+}
+
+TEST(SessionFile, AFalloffIsCarriedToAFinerMeshWithItsWeights) {
+  // `primo replay --mesh`: each coarse falloff face's weight goes to its fine faces.
+  const RecordedSession r = record_bar_session("bar.obj");
+  const Session coarse = with_falloff(r);
+  const Mesh fine = make_bar(0.2, 1.0, 4, 20);
+  const Session mapped = map_session_to_mesh(coarse, r.mesh, fine);
+  const SessionState end = validate_session(mapped, int(fine.n_faces()));
+  ASSERT_TRUE(end.handles[1].falloff);
+  const SessionFalloff& was = *coarse.events[1].handles[1].falloff;
+  const SessionFalloff& now = *end.handles[1].falloff;
+  EXPECT_EQ(now.radius, was.radius);
+  EXPECT_EQ(now.faces.size(), 4 * was.faces.size()) << "each quad of the bar splits in four";
+  for (double w : now.weights)
+    EXPECT_NE(std::find(was.weights.begin(), was.weights.end(), w), was.weights.end()) << w;
+}
+
+TEST(SessionFile, ASessionWithoutFalloffsIsWrittenAsBefore) {
+  // The shipped session, read and written again, is the same bytes: a file without a falloff
+  // names no new key, so every PriMo that reads primo-session/1 reads it.
+  const std::string path = primo::test::source_path("assets/sessions/spot-pose.session.json");
+  const std::string text = session_to_json(load_session(path), path);
+  EXPECT_EQ(text, primo::test::read_text(path));
+  EXPECT_EQ(text.find("falloff"), std::string::npos);
 }

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "primo/mesh/geometry.h"
 #include "primo/model/constraints.h"
 #include "primo/model/turn.h"
 
@@ -48,6 +49,19 @@ struct SessionPose {
   }
 };
 
+// A handle's falloff (the editor's soft selection, primo/model/falloff_springs.h) as the editor
+// froze it when its radius was set: the radius, and the free faces it reached (sorted, distinct,
+// none of the handle's own) with their weights in (0, 1]. A replay makes the same springs from
+// them without searching the mesh again.
+struct SessionFalloff {
+  double radius = 0.0;
+  std::vector<int> faces;
+  std::vector<double> weights;
+  bool operator==(const SessionFalloff& o) const {
+    return radius == o.radius && faces == o.faces && weights == o.weights;
+  }
+};
+
 struct SessionHandle {
   std::string name;
   std::shared_ptr<const std::vector<int>> faces;  // sorted, distinct, never empty
@@ -56,6 +70,7 @@ struct SessionHandle {
   Vec3 center = Vec3::Zero();  // the pivot, a rest point (the centroid unless placed elsewhere)
   SessionPose pose;
   int color = 0;               // the editor's palette slot (not seen by the solver)
+  std::shared_ptr<const SessionFalloff> falloff;  // null: none
 
   RigidTransform transform() const;
 };
@@ -104,16 +119,19 @@ inline bool operator!=(const SessionState& a, const SessionState& b) { return !(
 
 // What the engine needs for a state: every handle but the springs becomes a primo::Handle
 // (one rigid group), every spring a primo::Force pulling its faces towards their rest
-// centroids moved by the handle's translation; both in the order of `state.handles`.
+// centroids moved by the handle's translation; both in the order of `state.handles`. Then the
+// handles' falloffs, one force a face (primo/model/falloff_springs.h), their shares from the
+// mesh's `rest` face geometry.
 struct SessionSolverInputs {
   PrismParameters params;
   std::vector<Handle> handles;
   std::vector<Force> forces;
 };
-SessionSolverInputs solver_inputs(const SessionState& state);
+SessionSolverInputs solver_inputs(const SessionState& state, const FaceGeometry& rest);
 
 // True when a Deformer made for `a` also serves `b` once its targets are moved: the same
-// handles, modes, spring stiffnesses, prism settings and factors; only poses may differ.
+// handles, modes, spring stiffnesses, falloffs, prism settings and factors; only poses may
+// differ.
 bool same_solver_structure(const SessionState& a, const SessionState& b);
 
 }  // namespace primo

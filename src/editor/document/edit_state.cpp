@@ -191,13 +191,10 @@ std::vector<Force> falloff_forces(const EditState& state) {
   std::vector<Force> forces;
   for (const HandleGroup& g : state.handles) {
     if (!g.falloff) continue;
-    // A spring's faces go to their rest centroids plus its translation; the others' with
-    // their rigid motion.
-    RigidTransform motion = g.transform();
-    if (g.mode == HandleMode::Spring) motion = {Mat3::Identity(), g.pose.translate};
-    for (const FalloffFace& f : *g.falloff)
-      forces.push_back({g.name + " falloff", {f.face}, falloff_target_offset(f, motion),
-                        g.stiffness * f.share});
+    const RigidTransform motion =
+        falloff_motion(g.transform(), g.pose.translate, g.mode == HandleMode::Spring);
+    for (Force& f : primo::falloff_forces(g.name, *g.falloff, motion, g.stiffness))
+      forces.push_back(std::move(f));
   }
   return forces;
 }

@@ -35,10 +35,18 @@ SessionHandle session_handle(const HandleGroup& g) {
   h.pose.rotation = g.pose.rotation;
   h.pose.turn = g.pose.turn;
   h.color = g.color;
+  if (g.falloff_radius > 0.0) {
+    auto falloff = std::make_shared<SessionFalloff>();
+    falloff->radius = g.falloff_radius;
+    if (g.falloff)
+      for (const FalloffFace& f : *g.falloff)
+        falloff->faces.push_back(f.face), falloff->weights.push_back(f.weight);
+    h.falloff = falloff;
+  }
   return h;
 }
 
-HandleGroup handle_group(const SessionHandle& h) {
+HandleGroup handle_group(const SessionHandle& h, const FaceGeometry& rest) {
   HandleGroup g;
   g.name = h.name;
   g.faces = h.faces;
@@ -49,6 +57,12 @@ HandleGroup handle_group(const SessionHandle& h) {
   g.pose.rotation = h.pose.rotation;
   g.pose.turn = h.pose.turn;
   g.color = h.color;
+  if (h.falloff) {
+    g.falloff_radius = h.falloff->radius;
+    if (!h.falloff->faces.empty())
+      g.falloff = std::make_shared<const std::vector<FalloffFace>>(
+          falloff_springs(rest, h.falloff->faces, h.falloff->weights));
+  }
   return g;
 }
 
@@ -65,10 +79,10 @@ SessionState session_state(const EditState& state) {
   return s;
 }
 
-void set_session_state(EditState& state, const SessionState& session) {
+void set_session_state(EditState& state, const SessionState& session, const FaceGeometry& rest) {
   state.handles.clear();
   state.handles.reserve(session.handles.size());
-  for (const SessionHandle& h : session.handles) state.handles.push_back(handle_group(h));
+  for (const SessionHandle& h : session.handles) state.handles.push_back(handle_group(h, rest));
   state.prisms.height = session.prisms.height;
   state.prisms.height_unit = session.prisms.height_unit;
   state.prisms.width = session.prisms.width;

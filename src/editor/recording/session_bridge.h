@@ -13,12 +13,13 @@ SessionHandleMode session_mode(HandleMode mode);
 HandleMode handle_mode(SessionHandleMode mode);
 
 SessionHandle session_handle(const HandleGroup& group);
-HandleGroup handle_group(const SessionHandle& handle);
+// `rest`: the mesh's rest face geometry, which a falloff's springs are made from.
+HandleGroup handle_group(const SessionHandle& handle, const FaceGeometry& rest);
 
 // The handles, prisms and factors of `state` (face lists and factor arrays stay shared).
 SessionState session_state(const EditState& state);
 // Replaces the handles, prisms and factors of `state` by the session state's; everything else
 // (selection, active handle, counters) is kept.
-void set_session_state(EditState& state, const SessionState& session);
+void set_session_state(EditState& state, const SessionState& session, const FaceGeometry& rest);
 
 }  // namespace primo::editor

@@ -154,7 +154,7 @@ void SessionControl::show(Editor& e, double t) {
       active = std::min(active, int(s.handles.size()) - 1);
   }
   EditState shown = doc->state;
-  set_session_state(shown, s);
+  set_session_state(shown, s, doc->topology->rest_geometry);
   shown.active = active >= int(shown.handles.size()) ? -1 : active;
   doc->state = shown;
   time_ = t;

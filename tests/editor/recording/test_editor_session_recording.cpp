@@ -121,7 +121,7 @@ TEST(SessionBridge, EditStatesComeBackFromSessionStatesAsTheyWere) {
   ASSERT_EQ(session.handles.size(), modes.size());
   for (size_t i = 0; i < modes.size(); ++i) EXPECT_EQ(handle_mode(session.handles[i].mode), modes[i]);
   EditState back = initial_edit_state(doc->n_faces());
-  set_session_state(back, session);
+  set_session_state(back, session, doc->topology->rest_geometry);
   EXPECT_TRUE(back == s);
   for (size_t i = 0; i < modes.size(); ++i) EXPECT_EQ(back.handles[i].color, s.handles[i].color);
   EXPECT_TRUE(session_state(back) == session);

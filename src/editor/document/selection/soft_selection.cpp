@@ -13,8 +13,7 @@ double smooth_falloff(double t) {
 
 std::vector<FalloffFace> falloff_faces(const MeshTopology& t, const std::vector<int>& handle_faces,
                                        double radius, const FaceMask& taken) {
-  std::vector<FalloffFace> out;
-  if (!(radius > 0.0) || handle_faces.empty()) return out;
+  if (!(radius > 0.0) || handle_faces.empty()) return {};
   const auto& centroid = t.rest_geometry.centroid;
   // Faces further than the radius from the handle's bounding box are out of reach.
   Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
@@ -24,7 +23,8 @@ std::vector<FalloffFace> falloff_faces(const MeshTopology& t, const std::vector<
   }
   lo.array() -= radius;
   hi.array() += radius;
-  double area = 0.0;
+  std::vector<int> faces;
+  std::vector<double> weights;
   for (int f = 0; f < t.n_faces; ++f) {
     if (f < int(taken.size()) && taken[size_t(f)]) continue;
     const Vec3& c = centroid[size_t(f)];
@@ -33,16 +33,10 @@ std::vector<FalloffFace> falloff_faces(const MeshTopology& t, const std::vector<
     for (int h : handle_faces) d = std::min(d, (c - centroid[size_t(h)]).norm());
     const double w = smooth_falloff(1.0 - d / radius);
     if (!(w > 0.0)) continue;
-    out.push_back({f, w, 0.0, c});
-    area += t.rest_geometry.area[size_t(f)];
+    faces.push_back(f);
+    weights.push_back(w);
   }
-  for (FalloffFace& f : out)
-    f.share = f.weight * t.rest_geometry.area[size_t(f.face)] / area;
-  return out;
-}
-
-Vec3 falloff_target_offset(const FalloffFace& face, const RigidTransform& motion) {
-  return motion.apply(face.rest_centroid) - face.rest_centroid;
+  return falloff_springs(t.rest_geometry, faces, weights);
 }
 
 }  // namespace primo::editor
