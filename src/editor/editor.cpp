@@ -157,7 +157,11 @@ void Editor::save_mesh(const std::string& path) {
   task_ = std::async(std::launch::async, [this, mesh, attributes = doc_->attributes, path,
                                            caveat]() -> std::function<void()> {
     primo::save_mesh(*mesh, *attributes, path);
-    return [this, path, caveat] { info("Saved the deformed mesh to " + path + caveat); };
+    // What the format cannot hold (a skin in an OBJ) is said with the "Saved" line.
+    const std::string lost = save_note(*attributes, path);
+    return [this, path, caveat, lost] {
+      info("Saved the deformed mesh to " + path + caveat + (lost.empty() ? "" : ". " + lost));
+    };
   });
 }
 

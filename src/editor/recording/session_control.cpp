@@ -122,7 +122,8 @@ void SessionControl::export_animation(Editor& e, const std::string& path) {
   auto session = std::make_shared<const Session>(has_playback_ ? playback_ : recorded_);
   std::shared_ptr<const Mesh> mesh = doc->mesh;
   try {
-    SessionAnimation(*session, *mesh, 1, path);  // refuses a file too large before solving
+    // Refuses a file too large before solving, counting the UVs, materials and images it keeps.
+    SessionAnimation(*session, *mesh, 1, path, *doc->attributes);
   } catch (const std::exception& ex) {
     return e.error_in_status(ex.what());
   }
