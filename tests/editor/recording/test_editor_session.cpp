@@ -474,7 +474,7 @@ TEST(EditorSession, ExportingASkinnedCharacterToObjSaysTheSkinIsLeftOut) {
   e.adopt(load_document(test::source_path("assets/meshes/huesitos.fbx")));
   ASSERT_FALSE(e.document()->attributes->skin.empty());
   const std::string dir = test::temp_dir();
-  for (const std::string name : {"posed.obj", "posed.glb"}) {
+  for (const char* name : {"posed.obj", "posed.glb"}) {
     e.save_mesh(dir + "/" + name);
     for (int k = 0; k < 1000 && e.file_task_running(); ++k) {
       e.update(0.016);
@@ -484,6 +484,6 @@ TEST(EditorSession, ExportingASkinnedCharacterToObjSaysTheSkinIsLeftOut) {
     const std::string last = e.messages().back().text;
     EXPECT_NE(last.find("Saved the deformed mesh"), std::string::npos) << last;
     const bool said = last.find("the skin (9 joints) is not saved") != std::string::npos;
-    EXPECT_EQ(said, name == "posed.obj") << last;
+    EXPECT_EQ(said, std::string(name) == "posed.obj") << last;
   }
 }
