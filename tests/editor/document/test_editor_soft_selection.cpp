@@ -6,6 +6,8 @@
 
 #include <algorithm>
 #include <iostream>
+#include <limits>
+#include <utility>
 
 #include "document/document.h"
 #include "document/scenario_bridge.h"
@@ -113,5 +115,31 @@ TEST(EditorSoftSelection, AFadingHandleBendsMoreAroundItAndDeformReproducesIt) {
               << " faces: primo deform of the saved scenario is " << apart
               << " of the diagonal from the editor's pose\n";
     EXPECT_LT(apart, 1e-8);
+  }
+}
+
+TEST(EditorSoftSelection, FalloffFacesAreThoseOfComparingWithEveryHandleFace) {
+  // The lookup of nearby handle faces must give exactly the faces and weights of the plain
+  // rule: the distance to the nearest of all the handle's rest centroids.
+  const MeshTopology t = build_topology(make_cylinder(0.25, 2.0, 24, 60, FaceShape::Triangles));
+  const std::vector<int> top = faces_where(t, 1.2, 2.0);
+  FaceMask taken(size_t(t.n_faces), 0);
+  apply_selection(taken, top, SelectOp::Add);
+  const auto& centroid = t.rest_geometry.centroid;
+  for (double radius : {1e-9, 0.013, 0.05, 0.31, 0.7, 5.0}) {
+    std::vector<std::pair<int, double>> expected;
+    for (int f = 0; f < t.n_faces; ++f) {
+      if (taken[size_t(f)]) continue;
+      double d = std::numeric_limits<double>::infinity();
+      for (int h : top) d = std::min(d, (centroid[size_t(f)] - centroid[size_t(h)]).norm());
+      const double w = smooth_falloff(1.0 - d / radius);
+      if (w > 0.0) expected.emplace_back(f, w);
+    }
+    const std::vector<FalloffFace> got = falloff_faces(t, top, radius, taken);
+    ASSERT_EQ(got.size(), expected.size()) << "radius " << radius;
+    for (size_t i = 0; i < got.size(); ++i) {
+      EXPECT_EQ(got[i].face, expected[i].first) << "radius " << radius;
+      EXPECT_EQ(got[i].weight, expected[i].second) << "radius " << radius;
+    }
   }
 }

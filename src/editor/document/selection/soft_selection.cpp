@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
+#include <unordered_map>
 
 namespace primo::editor {
 
@@ -23,6 +25,26 @@ std::vector<FalloffFace> falloff_faces(const MeshTopology& t, const std::vector<
   }
   lo.array() -= radius;
   hi.array() += radius;
+  // The handle's centroids in cubes of the radius' size: every centroid within the radius of a
+  // point lies in the 27 cubes around the point's, so the nearest one within reach is found
+  // there, not among all of the handle's faces (a big handle on a big mesh made each Alt +
+  // wheel step take seconds). Farther centroids give a weight of 0 either way, so the faces
+  // and weights are those of comparing with every handle face.
+  // (One cube for all when the radius is too small for cube numbers to fit.)
+  const Vec3 origin = lo;
+  const bool in_cubes = (hi - lo).maxCoeff() / radius < 1e12;
+  const auto cube = [&](const Vec3& p, int axis) {
+    return in_cubes ? std::int64_t(std::floor((p[axis] - origin[axis]) / radius)) : 0;
+  };
+  const auto key = [](std::int64_t x, std::int64_t y, std::int64_t z) {
+    return (std::uint64_t(x) * 73856093u) ^ (std::uint64_t(y) * 19349663u) ^
+           (std::uint64_t(z) * 83492791u);
+  };
+  std::unordered_map<std::uint64_t, std::vector<int>> cubes;
+  for (int h : handle_faces) {
+    const Vec3& c = centroid[size_t(h)];
+    cubes[key(cube(c, 0), cube(c, 1), cube(c, 2))].push_back(h);
+  }
   std::vector<int> faces;
   std::vector<double> weights;
   for (int f = 0; f < t.n_faces; ++f) {
@@ -30,7 +52,15 @@ std::vector<FalloffFace> falloff_faces(const MeshTopology& t, const std::vector<
     const Vec3& c = centroid[size_t(f)];
     if ((c.array() < lo.array()).any() || (c.array() > hi.array()).any()) continue;
     double d = std::numeric_limits<double>::infinity();
-    for (int h : handle_faces) d = std::min(d, (c - centroid[size_t(h)]).norm());
+    const std::int64_t x = cube(c, 0), y = cube(c, 1), z = cube(c, 2);
+    for (std::int64_t i = x - 1; i <= x + 1; ++i)
+      for (std::int64_t j = y - 1; j <= y + 1; ++j)
+        for (std::int64_t k = z - 1; k <= z + 1; ++k) {
+          const auto near = cubes.find(key(i, j, k));
+          if (near == cubes.end()) continue;
+          // A colliding key only adds candidates: the distance itself decides.
+          for (int h : near->second) d = std::min(d, (c - centroid[size_t(h)]).norm());
+        }
     const double w = smooth_falloff(1.0 - d / radius);
     if (!(w > 0.0)) continue;
     faces.push_back(f);
